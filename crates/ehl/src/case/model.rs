@@ -1,0 +1,210 @@
+//! The validated case: every key resolved, every default filled, every value checked.
+//! Solvers and writers read only this; [`super::load`] builds it from a TOML file.
+//!
+//! All quantities SI (m, Pa, N, m/s, Pa s, kg/m^3, rad). Serialised into `summary.json` as the
+//! resolved case, with the same key names as the case file.
+
+use serde::Serialize;
+
+/// `kind = "dry" | "ehl"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kind {
+    Dry,
+    Ehl,
+}
+
+/// `body.shape`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Shape {
+    Roller,
+    Ball,
+    Flat,
+}
+
+/// Axial profile of a roller (drop of the surface below the nominal cylinder, as a function of y).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Profile {
+    Straight,
+    /// circular crown of radius `crown_radius` (m) along y, centred at mid-length
+    Crowned { crown_radius: f64 },
+    /// Lundberg logarithmic profile designed for load `load` (N) (ISO/TS 16281 form)
+    Logarithmic { load: f64 },
+    /// straight centre, circular-arc ends of radius `edge_radius` over `edge_length` at each end
+    RoundedEdge { edge_length: f64, edge_radius: f64 },
+    /// straight centre, straight chamfer of angle `angle` (rad) over `edge_length` at each end
+    Chamfer { edge_length: f64, angle: f64 },
+}
+
+/// One body (`[body1]`, `[body2]`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Body {
+    pub shape: Shape,
+    /// radius in the rolling plane x-z (m); infinite for a flat
+    pub radius: f64,
+    /// radius in the axial plane y-z (m): ball only (ellipsoid); infinite for rollers and flats
+    pub radius_y: f64,
+    /// axial length (m); infinite for an infinite line contact, a ball or a flat
+    pub length: f64,
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    pub profile: Profile,
+    /// shift of this body's mid-length along y (m); body1 is always 0
+    pub axial_offset: f64,
+}
+
+/// `[alignment]` (rad).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Alignment {
+    /// misalignment perpendicular to the contact plane: gap varies linearly along y
+    pub tilt: f64,
+    /// misalignment in the contact plane: axes crossed in the x-y view
+    pub skew: f64,
+}
+
+/// `[load]`, resolved to a force. For an infinite line contact, `force_per_length` is the
+/// load per unit length (N/m) and `force` is NaN-free but meaningless (set to `force_per_length`
+/// times the 1 m reference length).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Load {
+    /// total normal load (N)
+    pub force: f64,
+    /// load per unit length (N/m): given for infinite line contacts, else force / contact length
+    pub force_per_length: f64,
+}
+
+/// `[motion]` (ehl only).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Motion {
+    /// u_e = (u1 + u2)/2 (m/s)
+    pub entrainment_speed: f64,
+    /// SRR = (u1 - u2)/u_e
+    pub slide_to_roll: f64,
+}
+
+impl Motion {
+    /// Surface speed of body 1: u1 = u_e (1 + SRR/2)  (m/s).
+    pub fn u1(&self) -> f64 {
+        self.entrainment_speed * (1.0 + 0.5 * self.slide_to_roll)
+    }
+    /// Surface speed of body 2: u2 = u_e (1 - SRR/2)  (m/s).
+    pub fn u2(&self) -> f64 {
+        self.entrainment_speed * (1.0 - 0.5 * self.slide_to_roll)
+    }
+}
+
+/// `lubricant.viscosity_model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ViscosityModel {
+    Roelands,
+    Barus,
+}
+
+/// `lubricant.density_model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DensityModel {
+    DowsonHigginson,
+    Constant,
+}
+
+/// `lubricant.rheology`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "model", rename_all = "kebab-case")]
+pub enum Rheology {
+    Newtonian,
+    /// Carreau (thesis eq. 2.15) with shear modulus G_f (Pa), power-law index n and optional
+    /// limiting shear stress tau_L = Lambda p (eq. 2.14)
+    Carreau {
+        shear_modulus: f64,
+        power_law_index: f64,
+        limiting_shear_coefficient: Option<f64>,
+    },
+    /// Eyring (sinh law) with Eyring stress tau_0 (Pa) and optional limiting shear coefficient
+    Eyring {
+        eyring_stress: f64,
+        limiting_shear_coefficient: Option<f64>,
+    },
+}
+
+/// `[lubricant]` (ehl only).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Lubricant {
+    /// eta0 at ambient pressure (Pa s)
+    pub viscosity: f64,
+    /// alpha (1/Pa)
+    pub pressure_viscosity_coefficient: f64,
+    /// rho0 at ambient pressure (kg/m^3)
+    pub density: f64,
+    pub viscosity_model: ViscosityModel,
+    pub density_model: DensityModel,
+    pub rheology: Rheology,
+}
+
+/// `[grid]`: cell counts and extents in Hertz half-widths b.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GridSpec {
+    pub nx: usize,
+    pub ny: usize,
+    pub x_min: f64,
+    pub x_max: f64,
+    pub y_min: f64,
+    pub y_max: f64,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SolverSpec {
+    pub tolerance: f64,
+    pub max_iterations: usize,
+    pub mirror_levels: usize,
+    pub free_end_correction: bool,
+}
+
+/// A validated case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Case {
+    pub title: String,
+    pub kind: Kind,
+    pub body1: Body,
+    pub body2: Body,
+    pub alignment: Alignment,
+    pub load: Load,
+    pub motion: Option<Motion>,
+    pub lubricant: Option<Lubricant>,
+    pub grid: GridSpec,
+    pub solver: SolverSpec,
+}
+
+impl Case {
+    /// E' (Pa).
+    pub fn reduced_modulus(&self) -> f64 {
+        crate::units::reduced_modulus(
+            self.body1.youngs_modulus,
+            self.body1.poisson_ratio,
+            self.body2.youngs_modulus,
+            self.body2.poisson_ratio,
+        )
+    }
+
+    /// Reduced radius in the rolling plane, 1/R = 1/R1 + 1/R2 (m).
+    pub fn reduced_radius(&self) -> f64 {
+        crate::units::reduced_radius(self.body1.radius, self.body2.radius)
+    }
+
+    /// True for a line contact between rollers (or roller on flat) of infinite length (1D).
+    pub fn is_infinite_line(&self) -> bool {
+        self.body1.shape != Shape::Ball
+            && self.body2.shape != Shape::Ball
+            && self.body1.length.is_infinite()
+            && self.body2.length.is_infinite()
+    }
+
+    /// True for a point (ball) contact.
+    pub fn is_point(&self) -> bool {
+        self.body1.shape == Shape::Ball || self.body2.shape == Shape::Ball
+    }
+}

@@ -1,0 +1,62 @@
+//! What a solve produces: the fields on the grid and the summary figures. Writers in
+//! [`crate::output`] read only this.
+
+use crate::grid::Grid;
+use serde::Serialize;
+
+/// Fields on the cell grid, row-major `ny * nx` (see the crate conventions).
+#[derive(Debug, Clone, Default)]
+pub struct Fields {
+    /// pressure (Pa)
+    pub pressure: Vec<f64>,
+    /// combined elastic deflection of both surfaces (m)
+    pub deformation: Vec<f64>,
+    /// film thickness h (m); dry contact: the gap after deformation
+    pub film: Option<Vec<f64>>,
+    /// viscosity (Pa s), ehl only
+    pub viscosity: Option<Vec<f64>>,
+    /// density (kg/m^3), ehl only
+    pub density: Option<Vec<f64>>,
+}
+
+/// The figures of `summary.json` (SI). Optional figures are omitted when they do not apply.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Summary {
+    pub converged: bool,
+    /// why the solver stopped, in words (e.g. "residual 3e-11 < tolerance")
+    pub termination: String,
+    pub iterations: usize,
+    /// final relative residual of the solver
+    pub residual: f64,
+    pub wall_time_s: f64,
+    /// integrated load (N); for an infinite line contact, per unit length (N/m)
+    pub load_n: f64,
+    /// relative load error |integrated - applied| / applied
+    pub load_error: f64,
+    pub max_pressure_pa: f64,
+    pub max_pressure_at_m: [f64; 2],
+    pub hertz_pressure_pa: f64,
+    pub hertz_half_width_m: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approach_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_area_m2: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub central_film_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_at_m: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_force_n: Option<f64>,
+}
+
+/// A solved case.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    pub grid: Grid,
+    pub fields: Fields,
+    pub summary: Summary,
+}
