@@ -148,10 +148,17 @@ fn cell_stresses(input: &FrictionInput) -> Result<Vec<(f64, f64)>> {
     }
     let cell_name = |k: usize| {
         let (i, j) = (k % g.nx, k / g.nx);
-        format!("cell ({i}, {j}) at x = {:.4e} m, y = {:.4e} m", g.x(i), g.y(j))
+        format!(
+            "cell ({i}, {j}) at x = {:.4e} m, y = {:.4e} m",
+            g.x(i),
+            g.y(j)
+        )
     };
     for k in 0..n {
-        if !input.pressure[k].is_finite() || !input.viscosity[k].is_finite() || input.film[k].is_nan() {
+        if !input.pressure[k].is_finite()
+            || !input.viscosity[k].is_finite()
+            || input.film[k].is_nan()
+        {
             return Err(Error::Solver(format!(
                 "friction: invalid field value in {} (p = {}, h = {}, eta = {})",
                 cell_name(k),
@@ -248,7 +255,9 @@ pub fn friction(input: &FrictionInput) -> Result<Friction> {
     let poiseuille_force = poiseuille * area;
     let force = couette_force + poiseuille_force;
     if !force.is_finite() {
-        return Err(Error::Solver(format!("friction: the friction force overflowed ({force})")));
+        return Err(Error::Solver(format!(
+            "friction: the friction force overflowed ({force})"
+        )));
     }
     Ok(Friction {
         force,

@@ -2,7 +2,9 @@
 //! fields: a Hertzian pressure, a parabolic film and Barus viscosity.
 
 use ehl::case::Rheology;
-use ehl::friction::{friction, slide_to_roll, surface_shear_stress, surface_speeds, Friction, FrictionInput};
+use ehl::friction::{
+    friction, slide_to_roll, surface_shear_stress, surface_speeds, Friction, FrictionInput,
+};
 use ehl::grid::Grid;
 use std::f64::consts::PI;
 
@@ -88,7 +90,12 @@ fn newtonian_couette_equals_quadrature_of_the_analytic_integrand() {
     let srr = 0.02;
     let du = UE * srr;
     let integrand = |x: f64| ETA0 * (ALPHA * hertz_line(x)).exp() * du / film(x, 0.0);
-    let exact = simpson(|t| integrand(B * t.sin()) * B * t.cos(), -PI / 2.0, PI / 2.0, 20_000);
+    let exact = simpson(
+        |t| integrand(B * t.sin()) * B * t.cos(),
+        -PI / 2.0,
+        PI / 2.0,
+        20_000,
+    );
 
     // The friction sum is the midpoint rule over the cells inside |x| < b. Near x = b (t = b - x)
     // the integrand is F(b)[1 + a s + a^2 s^2/2 + a^3 s^3/6 ...](1 - t/(4b) ...) with
@@ -108,8 +115,10 @@ fn newtonian_couette_equals_quadrature_of_the_analytic_integrand() {
         let f = line_fields(nx, 0.0);
         let fr = run(&f, srr, &Rheology::Newtonian);
         let dx = f.grid.dx;
-        let predicted =
-            2.0 * (Z_HALF * ca * dx.powf(1.5) + Z_ONE * cb * dx * dx + Z_THREE_HALVES * cc * dx.powf(2.5));
+        let predicted = 2.0
+            * (Z_HALF * ca * dx.powf(1.5)
+                + Z_ONE * cb * dx * dx
+                + Z_THREE_HALVES * cc * dx.powf(2.5));
         let err = fr.couette_force - exact;
         eprintln!(
             "nx {nx}: couette {:.12e}, exact {exact:.12e}, error {:.3e} rel, predicted {:.3e} rel",
@@ -183,7 +192,11 @@ fn symmetric_pressure_and_film_give_zero_net_poiseuille_force() {
     .unwrap();
     let scale: f64 = tau.iter().map(|t| t.abs()).sum::<f64>() * f.grid.dx;
     assert!(scale > 0.0);
-    assert!(fr.poiseuille_force.abs() < 1e-13 * scale, "{} vs {scale}", fr.poiseuille_force);
+    assert!(
+        fr.poiseuille_force.abs() < 1e-13 * scale,
+        "{} vs {scale}",
+        fr.poiseuille_force
+    );
     // and the shear stress field is odd about x = 0
     for i in 0..f.grid.nx {
         assert!((tau[i] + tau[f.grid.nx - 1 - i]).abs() <= 1e-12 * tau[i].abs().max(1e-30));
@@ -196,7 +209,9 @@ fn one_sided_differences_are_exact_for_a_linear_pressure() {
     // linear p, so the Poiseuille force is -(h/2) s * area to round-off (1e-12).
     let grid = Grid::new(37, 5, -1e-4, 2e-4, -3e-4, 3e-4);
     let s = 2e12;
-    let p: Vec<f64> = (0..grid.len()).map(|k| 1e9 + s * grid.x(k % grid.nx)).collect();
+    let p: Vec<f64> = (0..grid.len())
+        .map(|k| 1e9 + s * grid.x(k % grid.nx))
+        .collect();
     let h = vec![2e-7; grid.len()];
     let eta = vec![1.0; grid.len()];
     let fr = friction(&FrictionInput {
@@ -212,7 +227,11 @@ fn one_sided_differences_are_exact_for_a_linear_pressure() {
     .unwrap();
     let area = (grid.x_max() - grid.x_min) * (grid.y_max() - grid.y_min);
     let expected = -0.5 * 2e-7 * s * area;
-    assert!((fr.poiseuille_force / expected - 1.0).abs() < 1e-12, "{} vs {expected}", fr.poiseuille_force);
+    assert!(
+        (fr.poiseuille_force / expected - 1.0).abs() < 1e-12,
+        "{} vs {expected}",
+        fr.poiseuille_force
+    );
     assert_eq!(fr.couette_force, 0.0);
 }
 
@@ -228,7 +247,11 @@ fn newtonian_friction_is_linear_in_srr_and_matches_the_slide_to_roll_definition(
         let r = run(&f, srr, &Rheology::Newtonian);
         assert!((r.couette_force / r1.couette_force - srr / 0.01).abs() < 1e-13);
         assert_eq!(r.poiseuille_force, base.poiseuille_force);
-        assert!(((r.coefficient - base.coefficient) / (r1.coefficient - base.coefficient) - srr / 0.01).abs() < 1e-10);
+        assert!(
+            ((r.coefficient - base.coefficient) / (r1.coefficient - base.coefficient) - srr / 0.01)
+                .abs()
+                < 1e-10
+        );
         let (u1, u2) = surface_speeds(UE, srr);
         assert!((slide_to_roll(u1, u2).unwrap() - srr).abs() < 1e-15);
         assert!((0.5 * (u1 + u2) - UE).abs() < 1e-15);
@@ -236,7 +259,10 @@ fn newtonian_friction_is_linear_in_srr_and_matches_the_slide_to_roll_definition(
     // sign convention: SRR > 0 (body 1 faster) gives a positive Couette force on body 2,
     // and reversing the sliding reverses it exactly
     assert!(r1.couette_force > 0.0);
-    assert_eq!(run(&f, -0.01, &Rheology::Newtonian).couette_force, -r1.couette_force);
+    assert_eq!(
+        run(&f, -0.01, &Rheology::Newtonian).couette_force,
+        -r1.couette_force
+    );
     assert_eq!(slide_to_roll(1.0, -1.0), None);
 }
 
@@ -282,8 +308,15 @@ fn carreau_with_n_one_and_eyring_at_small_stress_equal_newtonian() {
         limiting_shear_coefficient: Some(0.06),
     };
     let srr = 1e-9;
-    let x_max = f.eta.iter().zip(&f.h).map(|(e, h)| e * UE * srr / h).fold(0.0, f64::max) / 4.5e6;
-    let dev = 1.0 - run(&f, srr, &carreau).couette_force / run(&f, srr, &Rheology::Newtonian).couette_force;
+    let x_max = f
+        .eta
+        .iter()
+        .zip(&f.h)
+        .map(|(e, h)| e * UE * srr / h)
+        .fold(0.0, f64::max)
+        / 4.5e6;
+    let dev = 1.0
+        - run(&f, srr, &carreau).couette_force / run(&f, srr, &Rheology::Newtonian).couette_force;
     eprintln!("Carreau SRR = 1e-9: x_max = {x_max:.3e}, deviation {dev:.3e}");
     assert!(x_max < 1e-3);
     assert!(dev > 0.0 && dev <= 0.5 * 0.43 * x_max * x_max * (1.0 + 1e-6));
@@ -337,7 +370,11 @@ fn extruded_line_contact_scales_with_length_in_2d() {
     let one = line_fields(400, 1e-4);
     let (ny, len) = (7, 3e-3);
     let grid = Grid::new(400, ny, -2.0 * B, 2.0 * B, -0.5 * len, 0.5 * len);
-    let rep = |v: &Vec<f64>| (0..ny).flat_map(|_| v.iter().copied()).collect::<Vec<f64>>();
+    let rep = |v: &Vec<f64>| {
+        (0..ny)
+            .flat_map(|_| v.iter().copied())
+            .collect::<Vec<f64>>()
+    };
     let two = Fields {
         grid,
         p: rep(&one.p),
@@ -373,7 +410,12 @@ fn point_contact_couette_matches_polar_quadrature() {
         let p = if s > 0.0 { p0 * s.sqrt() } else { 0.0 };
         ETA0 * (ALPHA * p).exp() * du / (h0 + r * r / (2.0 * rr))
     };
-    let exact = simpson(|t| 2.0 * PI * f(a * t.sin()) * a * t.sin() * a * t.cos(), 0.0, PI / 2.0, 20_000);
+    let exact = simpson(
+        |t| 2.0 * PI * f(a * t.sin()) * a * t.sin() * a * t.cos(),
+        0.0,
+        PI / 2.0,
+        20_000,
+    );
     let mut errors = vec![];
     for n in [64, 128] {
         let grid = Grid::new(n, n, -1.5 * a, 1.5 * a, -1.5 * a, 1.5 * a);
@@ -406,7 +448,12 @@ fn point_contact_couette_matches_polar_quadrature() {
         let band_max = f(a - dx / 2f64.sqrt()); // f decreases with r
         let bound = band_max * 2.0 * 2f64.sqrt() * PI * a * dx;
         let err = fr.couette_force - exact;
-        eprintln!("ball {n}^2: couette {:.6e}, exact {exact:.6e}, error {:.3e} rel, bound {:.3e} rel", fr.couette_force, err / exact, bound / exact);
+        eprintln!(
+            "ball {n}^2: couette {:.6e}, exact {exact:.6e}, error {:.3e} rel, bound {:.3e} rel",
+            fr.couette_force,
+            err / exact,
+            bound / exact
+        );
         assert!(err.abs() < bound);
         // symmetric fields: no net pressure-flow force (round-off against |p| h / 2 scale)
         assert!(fr.poiseuille_force.abs() < 1e-12 * p0 * h0 * a);

@@ -66,7 +66,9 @@ fn unlimited_shear_stress(model: &Rheology, eta: f64, shear_rate: f64) -> f64 {
             let x = newtonian / shear_modulus;
             shear_modulus * x * x.abs().hypot(1.0).powf(power_law_index - 1.0)
         }
-        Rheology::Eyring { eyring_stress, .. } => eyring_stress * (newtonian / eyring_stress).asinh(),
+        Rheology::Eyring { eyring_stress, .. } => {
+            eyring_stress * (newtonian / eyring_stress).asinh()
+        }
     }
 }
 
@@ -134,14 +136,20 @@ mod tests {
         let gd = 1e-3 * g / eta; // x = 1e-3
         let tau = shear_stress(&CARREAU, eta, gd, 0.0);
         let dev = 1.0 - tau / (eta * gd);
-        assert!((dev / ((1.0 - n) / 2.0 * 1e-6) - 1.0).abs() < 1e-5, "dev {dev}");
+        assert!(
+            (dev / ((1.0 - n) / 2.0 * 1e-6) - 1.0).abs() < 1e-5,
+            "dev {dev}"
+        );
         // large x: tau = G x^n (1 + 1/x^2)^((n-1)/2) -> G x^n; at x = 1e8 the relative
         // difference is (1-n)/2 / x^2 ~ 2e-17, below round-off: compare to 1e-12 (powf
         // round-off at this magnitude).
         for &x in &[1e8, 1e20, 1e200] {
             let tau = shear_stress(&CARREAU, eta, x * g / eta, 0.0);
             let power_law = g * x.powf(n);
-            assert!((tau / power_law - 1.0).abs() < 1e-12, "x {x}: {tau} vs {power_law}");
+            assert!(
+                (tau / power_law - 1.0).abs() < 1e-12,
+                "x {x}: {tau} vs {power_law}"
+            );
         }
     }
 
