@@ -238,6 +238,35 @@ pub fn surface_shear_stress(input: &FrictionInput) -> Result<Vec<f64>> {
 /// Returns an error (never NaN) for fields of the wrong length, NaN or non-finite pressure or
 /// viscosity, non-finite speeds, a load that is not positive and finite, or a pressurised cell
 /// with h <= 0 under sliding when the rheology has no limiting shear stress.
+///
+/// ```
+/// use ehl::case::Rheology;
+/// use ehl::friction::{friction, surface_speeds, FrictionInput};
+/// use ehl::grid::Grid;
+///
+/// // infinite line contact (ny = 1, dy = 1 m): uniform 1 GPa over 2 cells, film 0.1 um
+/// let grid = Grid::new(2, 1, -1e-4, 1e-4, -0.5, 0.5);
+/// let (u1, u2) = surface_speeds(2.0, 0.05); // u_e = 2 m/s, SRR = 0.05
+/// let rheology = Rheology::Carreau {
+///     shear_modulus: 4.5e6,
+///     power_law_index: 0.57,
+///     limiting_shear_coefficient: Some(0.06),
+/// };
+/// let f = friction(&FrictionInput {
+///     grid: &grid,
+///     pressure: &[1e9, 1e9],
+///     film: &[1e-7, 1e-7],
+///     viscosity: &[1e3, 1e3],
+///     u1,
+///     u2,
+///     rheology: &rheology,
+///     load: 2e5, // N/m
+/// })
+/// .unwrap();
+/// // eta (u1 - u2) / h = 1e12 Pa: capped at Lambda p = 6e7 Pa over 2e-4 m
+/// assert!((f.couette_force - 6e7 * 2e-4).abs() < 1e-6);
+/// assert!((f.coefficient - 0.06).abs() < 1e-12);
+/// ```
 pub fn friction(input: &FrictionInput) -> Result<Friction> {
     if !(input.load.is_finite() && input.load > 0.0) {
         return Err(Error::Solver(format!(
