@@ -6,19 +6,20 @@ use toml::{Table, Value};
 
 pub(crate) type R<T> = std::result::Result<T, Error>;
 
-/// A number for messages: plain for ordinary magnitudes, exponent form otherwise.
+/// A number for messages, to 6 significant digits: plain for ordinary magnitudes, exponent form
+/// otherwise (values a person typed come back as typed).
 pub fn fmt_num(v: f64) -> String {
     if v.is_nan() {
-        "nan".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf".into() } else { "-inf".into() }
-    } else if v == 0.0 || (1e-3..1e6).contains(&v.abs()) {
-        // shortest representation that round-trips, trimmed of float noise
-        let s = format!("{:.6}", v);
-        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-        if s.parse::<f64>().ok() == Some(v) { s } else { format!("{v}") }
+        return "nan".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "inf".into() } else { "-inf".into() };
+    }
+    let r: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    if r == 0.0 || (1e-3..1e6).contains(&r.abs()) {
+        format!("{r}")
     } else {
-        format!("{v:e}")
+        format!("{r:e}")
     }
 }
 
@@ -241,6 +242,8 @@ mod tests {
         assert_eq!(fmt_num(0.0), "0");
         assert_eq!(fmt_num(-5.0), "-5");
         assert_eq!(fmt_num(f64::INFINITY), "inf");
+        assert_eq!(fmt_num(1.3183216521636505), "1.31832");
+        assert_eq!(fmt_num(30000.0), "30000");
     }
 
     #[test]

@@ -149,7 +149,7 @@ fn body(top: &Sec, name: &str) -> R<Body> {
                 "length",
                 "the roller's axial length in m, e.g. length = 9.5e-3 (length = inf gives an infinite line contact)",
             )?;
-            if !(len > 0.0) {
+            if len.is_nan() || len <= 0.0 {
                 return Err(s.err(
                     "length",
                     format!("must be positive (m; inf for an infinite line contact), found {}", fmt_num(len)),

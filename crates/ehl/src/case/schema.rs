@@ -125,7 +125,7 @@ pub fn schema_form(path: &str) -> String {
 /// True if `path` (display form, e.g. `features[0].x`) is a valid key or table of a case file.
 pub fn is_known(path: &str) -> bool {
     let s = schema_form(path);
-    all_keys().iter().any(|k| *k == s)
+    all_keys().contains(&s)
 }
 
 fn split_parent(path: &str) -> (&str, &str) {
@@ -165,7 +165,7 @@ pub fn suggest(path: &str) -> Option<String> {
             continue;
         }
         let score = sim + if same { 0.1 } else { 0.0 };
-        if best.as_ref().map_or(true, |(s, _)| score > *s) {
+        if !matches!(&best, Some((s, _)) if score <= *s) {
             // show array indices as the user wrote them
             let shown = if same {
                 if display_parent.is_empty() {
