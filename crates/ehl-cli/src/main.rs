@@ -161,9 +161,7 @@ pub fn result_line(s: &Summary) -> String {
 
 fn run(args: RunArgs) -> Result<ExitCode> {
     let case = ehl::case::load_file(&args.case.case, &args.case.set)?;
-    let dir = args
-        .out
-        .unwrap_or_else(|| default_out(&args.case.case, ""));
+    let dir = args.out.unwrap_or_else(|| default_out(&args.case.case, ""));
     let bar = progress::Bar::new(args.quiet, 1000);
     let solution = ehl::run::solve(&case, &bar);
     bar.finish();

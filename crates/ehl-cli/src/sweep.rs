@@ -84,7 +84,10 @@ impl Vary {
             };
             let (a, b) = (num(parts[0], "START")?, num(parts[1], "STOP")?);
             let n: usize = parts[2].trim().parse().map_err(|_| {
-                format!("N `{}` in `{key}={spec}` is not a whole number of points", parts[2])
+                format!(
+                    "N `{}` in `{key}={spec}` is not a whole number of points",
+                    parts[2]
+                )
             })?;
             if n == 0 {
                 return Err(format!("N in `{key}={spec}` must be at least 1"));
@@ -204,10 +207,7 @@ fn points(varies: &[Vary]) -> Vec<Point> {
                 folder.push('_');
                 folder.push_str(&sanitize(&format!("{n}={}", label(v))));
             }
-            Point {
-                values,
-                folder,
-            }
+            Point { values, folder }
         })
         .collect()
 }
@@ -251,8 +251,8 @@ fn write_csv(dir: &Path, varies: &[Vary], pts: &[Point]) -> Result<usize> {
         let Ok(raw) = std::fs::read_to_string(&path) else {
             continue;
         };
-        let json: serde_json::Value = serde_json::from_str(&raw)
-            .with_context(|| format!("reading {}", path.display()))?;
+        let json: serde_json::Value =
+            serde_json::from_str(&raw).with_context(|| format!("reading {}", path.display()))?;
         let cells: Vec<String> = p
             .values
             .iter()
@@ -392,7 +392,9 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
         anyhow::bail!("{} sweep point(s) failed", failed.len());
     }
     if not_converged > 0 {
-        eprintln!("warning: {not_converged} point(s) did not converge (converged = false in sweep.csv)");
+        eprintln!(
+            "warning: {not_converged} point(s) did not converge (converged = false in sweep.csv)"
+        );
         return Ok(ExitCode::from(EXIT_NOT_CONVERGED));
     }
     Ok(ExitCode::SUCCESS)
@@ -410,12 +412,12 @@ mod tests {
         assert_eq!(v.values[10], "0.1");
         let v = Vary::parse("load.force=4000,5000, 6000").unwrap();
         assert_eq!(v.values, ["4000", "5000", "6000"]);
-        let v = Vary::parse(
-            "body1.profile={kind=\"crowned\", crown_radius=1},{kind=\"straight\"}",
-        )
-        .unwrap();
+        let v = Vary::parse("body1.profile={kind=\"crowned\", crown_radius=1},{kind=\"straight\"}")
+            .unwrap();
         assert_eq!(v.values.len(), 2);
-        assert!(Vary::parse("load.forse=1,2").unwrap_err().contains("load.force"));
+        assert!(Vary::parse("load.forse=1,2")
+            .unwrap_err()
+            .contains("load.force"));
         assert!(Vary::parse("load.force=1:2").is_err());
         assert!(Vary::parse("load.force=1:2:0").is_err());
         assert!(Shard::parse("2/2").is_err());
@@ -432,6 +434,9 @@ mod tests {
         assert_eq!(p[1].values, ["0", "6000"]);
         let c = Vary::parse("body1.radius=0.01,0.02").unwrap();
         let d = Vary::parse("body2.radius=0.01").unwrap();
-        assert_eq!(points(&[c, d])[1].folder, "p001_body1.radius=0.02_body2.radius=0.01");
+        assert_eq!(
+            points(&[c, d])[1].folder,
+            "p001_body1.radius=0.02_body2.radius=0.01"
+        );
     }
 }

@@ -161,7 +161,10 @@ pub fn apply(root: &mut Table, assignment: &str, file: &str) -> Result<()> {
                 return Ok(());
             }
             let Value::Table(t) = item else {
-                return Err(err(&shown, format!("is not a table (in --set {assignment})")));
+                return Err(err(
+                    &shown,
+                    format!("is not a table (in --set {assignment})"),
+                ));
             };
             here = t;
             i += 2;
@@ -222,9 +225,13 @@ mod tests {
             Value::Float(0.1),
             "missing table is created"
         );
-        let e = apply(&mut t, "load.forse=1", "c.toml").unwrap_err().to_string();
+        let e = apply(&mut t, "load.forse=1", "c.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("load.force"), "{e}");
-        let e = apply(&mut t, "features[0].x=1", "c.toml").unwrap_err().to_string();
+        let e = apply(&mut t, "features[0].x=1", "c.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("no [[features]]"), "{e}");
     }
 }

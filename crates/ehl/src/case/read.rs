@@ -87,7 +87,9 @@ impl<'a> Sec<'a> {
             Some(Value::Integer(i)) => Ok(Some(*i as f64)),
             Some(Value::String(s)) if s.trim().parse::<f64>().is_ok() => Err(self.err(
                 k,
-                format!("expected a number ({unit}), found the string \"{s}\"; write it without quotes"),
+                format!(
+                    "expected a number ({unit}), found the string \"{s}\"; write it without quotes"
+                ),
             )),
             Some(v) => Err(self.err(
                 k,
@@ -126,7 +128,10 @@ impl<'a> Sec<'a> {
         match self.num(k, unit)? {
             Some(v) if !(v >= 0.0 && v.is_finite()) => Err(self.err(
                 k,
-                format!("must be a finite number >= 0 ({unit}), found {}", fmt_num(v)),
+                format!(
+                    "must be a finite number >= 0 ({unit}), found {}",
+                    fmt_num(v)
+                ),
             )),
             v => Ok(v),
         }
@@ -150,10 +155,9 @@ impl<'a> Sec<'a> {
     /// A whole number >= `min`.
     pub fn count(&self, k: &str, what: &str, min: i64) -> R<Option<usize>> {
         match self.int(k, what)? {
-            Some(v) if v < min => Err(self.err(
-                k,
-                format!("must be at least {min} ({what}), found {v}"),
-            )),
+            Some(v) if v < min => {
+                Err(self.err(k, format!("must be at least {min} ({what}), found {v}")))
+            }
             Some(v) => Ok(Some(v as usize)),
             None => Ok(None),
         }
@@ -163,10 +167,7 @@ impl<'a> Sec<'a> {
         match self.get(k) {
             None => Ok(None),
             Some(Value::Boolean(b)) => Ok(Some(*b)),
-            Some(v) => Err(self.err(
-                k,
-                format!("expected true or false, found {}", describe(v)),
-            )),
+            Some(v) => Err(self.err(k, format!("expected true or false, found {}", describe(v)))),
         }
     }
 

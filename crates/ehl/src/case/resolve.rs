@@ -26,7 +26,13 @@ pub const DEFAULT_DRY_ITERATIONS: usize = 500;
 pub const DEFAULT_EHL_ITERATIONS: usize = 200;
 
 const SHAPES: &[&str] = &["roller", "ball", "flat"];
-const PROFILE_KINDS: &[&str] = &["straight", "crowned", "logarithmic", "rounded-edge", "chamfer"];
+const PROFILE_KINDS: &[&str] = &[
+    "straight",
+    "crowned",
+    "logarithmic",
+    "rounded-edge",
+    "chamfer",
+];
 const RHEOLOGY_MODELS: &[&str] = &["newtonian", "carreau", "eyring"];
 const FEATURE_KINDS: &[&str] = &["pit", "dent", "height-map"];
 const LOAD_FORMS: &[&str] = &[
@@ -74,12 +80,7 @@ fn body(top: &Sec, name: &str) -> R<Body> {
         Some("roller") => Shape::Roller,
         Some("ball") => Shape::Ball,
         Some(_) => Shape::Flat,
-        None => {
-            return Err(s.missing(
-                "shape",
-                "shape = \"roller\", \"ball\" or \"flat\"",
-            ))
-        }
+        None => return Err(s.missing("shape", "shape = \"roller\", \"ball\" or \"flat\"")),
     };
     let youngs_modulus = required(
         s.positive("youngs_modulus", "Pa")?,
@@ -119,7 +120,10 @@ fn body(top: &Sec, name: &str) -> R<Body> {
         if !(r > 0.0 && r.is_finite()) {
             return Err(s.err(
                 "radius",
-                format!("must be a positive, finite number (m), found {}", fmt_num(r)),
+                format!(
+                    "must be a positive, finite number (m), found {}",
+                    fmt_num(r)
+                ),
             ));
         }
         Ok(r)
@@ -152,7 +156,10 @@ fn body(top: &Sec, name: &str) -> R<Body> {
             if len.is_nan() || len <= 0.0 {
                 return Err(s.err(
                     "length",
-                    format!("must be positive (m; inf for an infinite line contact), found {}", fmt_num(len)),
+                    format!(
+                        "must be positive (m; inf for an infinite line contact), found {}",
+                        fmt_num(len)
+                    ),
                 ));
             }
             b.length = len;
@@ -166,17 +173,29 @@ fn body(top: &Sec, name: &str) -> R<Body> {
                 "length",
                 "a ball has no axial length (for an ellipsoid give radius_y instead)",
             )?;
-            forbid(&s, "profile", "is for rollers only (the axial profile of a roller)")?;
+            forbid(
+                &s,
+                "profile",
+                "is for rollers only (the axial profile of a roller)",
+            )?;
         }
         Shape::Flat => {
-            forbid(&s, "radius", "a flat is a plane and has no radius; leave the key out")?;
+            forbid(
+                &s,
+                "radius",
+                "a flat is a plane and has no radius; leave the key out",
+            )?;
             forbid(&s, "radius_y", "is for balls only; a flat is a plane")?;
             forbid(
                 &s,
                 "length",
                 "a flat is unbounded along y; for a disc of finite width use shape = \"roller\" with the disc radius",
             )?;
-            forbid(&s, "profile", "is for rollers only (the axial profile of a roller)")?;
+            forbid(
+                &s,
+                "profile",
+                "is for rollers only (the axial profile of a roller)",
+            )?;
         }
     }
     if name == "body2" {
@@ -195,7 +214,10 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
             if kind != "straight" {
                 return Err(s.err(
                     "profile",
-                    format!("profile \"{kind}\" needs its parameters: write it as a table, e.g. {}", profile_example(kind)),
+                    format!(
+                        "profile \"{kind}\" needs its parameters: write it as a table, e.g. {}",
+                        profile_example(kind)
+                    ),
                 ));
             }
             Profile::Straight
@@ -237,7 +259,10 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
                     p.positive(k, unit)?,
                     &p,
                     k,
-                    &format!("{k} ({unit}) for profile kind \"{kind}\", e.g. {}", profile_example(kind)),
+                    &format!(
+                        "{k} ({unit}) for profile kind \"{kind}\", e.g. {}",
+                        profile_example(kind)
+                    ),
                 )
             };
             let edge = |p: &Sec, e: f64| -> R<f64> {
@@ -271,7 +296,10 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
                     if angle >= FRAC_PI_2 {
                         return Err(p.err(
                             "angle",
-                            format!("a chamfer angle must lie between 0 and pi/2 rad, found {}", fmt_num(angle)),
+                            format!(
+                                "a chamfer angle must lie between 0 and pi/2 rad, found {}",
+                                fmt_num(angle)
+                            ),
                         ));
                     }
                     Profile::Chamfer { edge_length, angle }
@@ -347,7 +375,11 @@ fn contact(top: &Sec, b1: &Body, b2: &Body) -> R<Contact> {
             "two flats make no contact: one body must be a roller or a ball",
         )),
         (Ball, Roller) | (Roller, Ball) => {
-            let k = if b1.shape == Roller { "body1.shape" } else { "body2.shape" };
+            let k = if b1.shape == Roller {
+                "body1.shape"
+            } else {
+                "body2.shape"
+            };
             Err(Error::Unsupported {
                 file: file.to_string(),
                 key: k.to_string(),
@@ -577,7 +609,10 @@ fn rheology(s: &Sec) -> R<Rheology> {
             if m != "newtonian" {
                 return Err(s.err(
                     "rheology",
-                    format!("rheology \"{m}\" needs its parameters: write it as a table, e.g. {}", rheology_example(m)),
+                    format!(
+                        "rheology \"{m}\" needs its parameters: write it as a table, e.g. {}",
+                        rheology_example(m)
+                    ),
                 ));
             }
             return Ok(Rheology::Newtonian);
@@ -586,7 +621,11 @@ fn rheology(s: &Sec) -> R<Rheology> {
         Some(v) => {
             return Err(s.err(
                 "rheology",
-                format!("expected a table such as {}, found {}", rheology_example("carreau"), describe(v)),
+                format!(
+                    "expected a table such as {}, found {}",
+                    rheology_example("carreau"),
+                    describe(v)
+                ),
             ))
         }
     };
@@ -602,16 +641,26 @@ fn rheology(s: &Sec) -> R<Rheology> {
         "the rheology model: \"newtonian\", \"carreau\" or \"eyring\"",
     )?;
     let params: &[&str] = match model {
-        "carreau" => &["shear_modulus", "power_law_index", "limiting_shear_coefficient"],
+        "carreau" => &[
+            "shear_modulus",
+            "power_law_index",
+            "limiting_shear_coefficient",
+        ],
         "eyring" => &["eyring_stress", "limiting_shear_coefficient"],
         _ => &[],
     };
     for k in t.keys() {
         if k != "model" && !params.contains(&k.as_str()) {
-            let list = if params.is_empty() { "none".to_string() } else { params.join(", ") };
+            let list = if params.is_empty() {
+                "none".to_string()
+            } else {
+                params.join(", ")
+            };
             return Err(p.err(
                 k,
-                format!("is not a parameter of rheology model \"{model}\" (its parameters: {list})"),
+                format!(
+                    "is not a parameter of rheology model \"{model}\" (its parameters: {list})"
+                ),
             ));
         }
     }
@@ -620,7 +669,10 @@ fn rheology(s: &Sec) -> R<Rheology> {
             p.positive(k, unit)?,
             &p,
             k,
-            &format!("{k} ({unit}) for rheology model \"{model}\", e.g. {}", rheology_example(model)),
+            &format!(
+                "{k} ({unit}) for rheology model \"{model}\", e.g. {}",
+                rheology_example(model)
+            ),
         )
     };
     let lsc = p.positive("limiting_shear_coefficient", "dimensionless, tau_L / p")?;
@@ -707,9 +759,19 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
                 path: &key,
                 table: tt,
             };
-            let from = required(p.finite("from", "m")?, &p, "from", "the start position x_p in m")?;
+            let from = required(
+                p.finite("from", "m")?,
+                &p,
+                "from",
+                "the start position x_p in m",
+            )?;
             let to = required(p.finite("to", "m")?, &p, "to", "the end position x_p in m")?;
-            required(p.count("steps", "time steps", 1)?, &p, "steps", "the number of time steps, e.g. steps = 200")?;
+            required(
+                p.count("steps", "time steps", 1)?,
+                &p,
+                "steps",
+                "the number of time steps, e.g. steps = 200",
+            )?;
             if from == to {
                 return Err(p.err("to", "must differ from motion.travel.from"));
             }
@@ -741,7 +803,10 @@ fn alignment(top: &Sec, point: bool) -> R<Alignment> {
         if v.abs() >= FRAC_PI_2 {
             return Err(s.err(
                 k,
-                format!("a misalignment angle must be smaller than pi/2 rad in size, found {}", fmt_num(v)),
+                format!(
+                    "a misalignment angle must be smaller than pi/2 rad in size, found {}",
+                    fmt_num(v)
+                ),
             ));
         }
         if point && v != 0.0 {
@@ -849,7 +914,11 @@ fn grid(top: &Sec, kind: Kind, c: Contact, b: f64) -> R<GridSpec> {
             Contact::Line { lo, hi, len, .. } => {
                 let tol = 1e-9 * len / b;
                 if y_min > lo / b + tol || y_max < hi / b - tol {
-                    let k = if y_min > lo / b + tol { "y_min" } else { "y_max" };
+                    let k = if y_min > lo / b + tol {
+                        "y_min"
+                    } else {
+                        "y_max"
+                    };
                     return Err(s.err(
                         k,
                         format!(
@@ -921,7 +990,10 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
     if tolerance >= 1.0 {
         return Err(s.err(
             "tolerance",
-            format!("a relative tolerance must be below 1 (e.g. 1e-6), found {}", fmt_num(tolerance)),
+            format!(
+                "a relative tolerance must be below 1 (e.g. 1e-6), found {}",
+                fmt_num(tolerance)
+            ),
         ));
     }
     Ok(SolverSpec {
@@ -932,7 +1004,9 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
                 Kind::Dry => DEFAULT_DRY_ITERATIONS,
                 Kind::Ehl => DEFAULT_EHL_ITERATIONS,
             }),
-        mirror_levels: s.count("mirror_levels", "mirror levels at each roller end", 0)?.unwrap_or(1),
+        mirror_levels: s
+            .count("mirror_levels", "mirror levels at each roller end", 0)?
+            .unwrap_or(1),
         free_end_correction: s.boolean("free_end_correction")?.unwrap_or(true),
     })
 }
@@ -981,26 +1055,63 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
         )?;
         if let Some(body) = s.int("body", "1 or 2")? {
             if body != 1 && body != 2 {
-                return Err(s.err("body", format!("must be 1 or 2 (the body that carries the feature), found {body}")));
+                return Err(s.err(
+                    "body",
+                    format!("must be 1 or 2 (the body that carries the feature), found {body}"),
+                ));
             }
         }
         let x = s.finite("x", "m")?.unwrap_or(0.0);
         let y = s.finite("y", "m")?.unwrap_or(0.0);
         let (w, l) = if kind == "height-map" {
             for k in ["width", "length", "depth", "pattern"] {
-                forbid(&s, k, "is not used by a height-map feature (it has file, dx, dy, x, y)")?;
+                forbid(
+                    &s,
+                    k,
+                    "is not used by a height-map feature (it has file, dx, dy, x, y)",
+                )?;
             }
-            required(s.string("file", "path of a .npy height map")?, &s, "file", "the height map file (.npy, heights in m)")?;
-            required(s.positive("dx", "m")?, &s, "dx", "the height map's spacing along x in m")?;
-            required(s.positive("dy", "m")?, &s, "dy", "the height map's spacing along y in m")?;
+            required(
+                s.string("file", "path of a .npy height map")?,
+                &s,
+                "file",
+                "the height map file (.npy, heights in m)",
+            )?;
+            required(
+                s.positive("dx", "m")?,
+                &s,
+                "dx",
+                "the height map's spacing along x in m",
+            )?;
+            required(
+                s.positive("dy", "m")?,
+                &s,
+                "dy",
+                "the height map's spacing along y in m",
+            )?;
             (0.0, 0.0)
         } else {
             for k in ["file", "dx", "dy"] {
                 forbid(&s, k, "is only used by kind = \"height-map\"")?;
             }
-            let w = required(s.positive("width", "m")?, &s, "width", "the feature's width along x in m")?;
-            let l = required(s.positive("length", "m")?, &s, "length", "the feature's length along y in m")?;
-            required(s.positive("depth", "m")?, &s, "depth", "the feature's depth in m")?;
+            let w = required(
+                s.positive("width", "m")?,
+                &s,
+                "width",
+                "the feature's width along x in m",
+            )?;
+            let l = required(
+                s.positive("length", "m")?,
+                &s,
+                "length",
+                "the feature's length along y in m",
+            )?;
+            required(
+                s.positive("depth", "m")?,
+                &s,
+                "depth",
+                "the feature's depth in m",
+            )?;
             (w, l)
         };
         let (mut hx, mut hy) = (0.5 * w, 0.5 * l);
@@ -1016,10 +1127,16 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
             let rp = p.positive("row_pitch", "m")?;
             let cp = p.positive("column_pitch", "m")?;
             if rows > 1 && rp.is_none() {
-                return Err(p.missing("row_pitch", "the centre-to-centre spacing of the rows along x in m"));
+                return Err(p.missing(
+                    "row_pitch",
+                    "the centre-to-centre spacing of the rows along x in m",
+                ));
             }
             if cols > 1 && cp.is_none() {
-                return Err(p.missing("column_pitch", "the centre-to-centre spacing of the columns along y in m"));
+                return Err(p.missing(
+                    "column_pitch",
+                    "the centre-to-centre spacing of the columns along y in m",
+                ));
             }
             hx += 0.5 * (rows - 1) as f64 * rp.unwrap_or(0.0);
             hy += 0.5 * (cols - 1) as f64 * cp.unwrap_or(0.0);
@@ -1107,7 +1224,9 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         return Err(Error::Unsupported {
             file: file.to_string(),
             key: "motion.travel".into(),
-            message: "transient runs are not built yet; remove motion.travel to solve the steady case".into(),
+            message:
+                "transient runs are not built yet; remove motion.travel to solve the steady case"
+                    .into(),
         });
     }
     Ok(Case {

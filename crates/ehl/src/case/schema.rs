@@ -160,7 +160,14 @@ pub fn suggest(path: &str) -> Option<String> {
         let sim = similarity(&leaf.to_lowercase(), cleaf);
         let same = cparent == parent;
         // a key in the same table is accepted at a lower similarity than one elsewhere
-        let threshold = if same { 0.45 } else { 0.6 };
+        // ... and a very short name only in the same table (`x` is not `features[0].x`)
+        let threshold = if same {
+            0.45
+        } else if leaf.len() < 4 {
+            f64::INFINITY
+        } else {
+            0.6
+        };
         if sim < threshold {
             continue;
         }
@@ -197,6 +204,14 @@ pub fn keys_in(parent: &str) -> Vec<String> {
 /// The message for an unknown key at `path`: a suggestion if one is close, else the valid keys
 /// of its table.
 pub fn unknown_key_message(path: &str) -> String {
+    // a key below a plain value (`load.force.x`)
+    let mut ancestor = path;
+    while let Some(i) = ancestor.rfind('.') {
+        ancestor = &ancestor[..i];
+        if is_known(ancestor) && keys_in(ancestor).is_empty() {
+            return format!("`{ancestor}` holds a value, not a table, so it has no keys");
+        }
+    }
     if let Some(s) = suggest(path) {
         return format!("unknown key; did you mean `{s}`?");
     }
@@ -279,8 +294,13 @@ mod tests {
             suggest("body1.axial_offset").as_deref(),
             Some("body2.axial_offset")
         );
-        assert_eq!(suggest("features[2].dept").as_deref(), Some("features[2].depth"));
+        assert_eq!(
+            suggest("features[2].dept").as_deref(),
+            Some("features[2].depth")
+        );
         assert_eq!(suggest("grid.qqqqqqqq"), None);
+        assert_eq!(suggest("load.x"), None);
+        assert!(unknown_key_message("load.force.x").contains("not a table"));
     }
 
     #[test]

@@ -103,7 +103,12 @@ fn dry_roller_defaults() {
     let w = 30000.0 / 4e-3;
     let b = (8.0 * w * 0.005 / (PI * E_STEEL)).sqrt();
     assert!(close(c.load.force_per_length, w, 1e-12));
-    assert!(close(c.grid.y_max, 2e-3 / b, 1e-12), "{} vs {}", c.grid.y_max, 2e-3 / b);
+    assert!(
+        close(c.grid.y_max, 2e-3 / b, 1e-12),
+        "{} vs {}",
+        c.grid.y_max,
+        2e-3 / b
+    );
     assert!(close(c.grid.y_min, -2e-3 / b, 1e-12));
     assert!(!c.is_infinite_line() && !c.is_point());
 }
@@ -142,7 +147,11 @@ fn line_load_forms_agree() {
     let by_w = parse(ROLLERS, &[&format!("load={{ force_per_length = {w} }}")]).unwrap();
     // W = w'/(E' R)
     let big_w = w / (E_STEEL * 0.005);
-    let by_dim = parse(ROLLERS, &[&format!("load={{ dimensionless_load = {big_w} }}")]).unwrap();
+    let by_dim = parse(
+        ROLLERS,
+        &[&format!("load={{ dimensionless_load = {big_w} }}")],
+    )
+    .unwrap();
     for c in [&by_ph, &by_w, &by_dim] {
         assert!(close(c.load.force, f, 1e-12), "{} vs {f}", c.load.force);
         assert!(close(c.load.force_per_length, w, 1e-12));
@@ -156,7 +165,11 @@ fn unequal_rollers_use_overlap_and_union() {
     // overlap -1..2 mm = 3 mm carries the load; the grid spans the union -2..5 mm.
     let c = parse(
         ROLLERS,
-        &["body2.length=6e-3", "body2.axial_offset=2e-3", "body2.radius=0.02"],
+        &[
+            "body2.length=6e-3",
+            "body2.axial_offset=2e-3",
+            "body2.radius=0.02",
+        ],
     )
     .unwrap();
     let w = 30000.0 / 3e-3;
@@ -184,7 +197,11 @@ fn roller_on_flat_and_infinite_line() {
     assert!(close(c.reduced_radius(), 0.01, 1e-12));
     assert!(close(c.load.force_per_length, 30000.0 / 4e-3, 1e-12));
 
-    let c = parse(&text, &["body1.length=inf", "load={ force_per_length = 1e6 }"]).unwrap();
+    let c = parse(
+        &text,
+        &["body1.length=inf", "load={ force_per_length = 1e6 }"],
+    )
+    .unwrap();
     assert!(c.is_infinite_line());
     let b = (8.0 * 1e6 * 0.01 / (PI * E_STEEL)).sqrt();
     assert_eq!(c.grid.ny, 1);
@@ -194,7 +211,14 @@ fn roller_on_flat_and_infinite_line() {
     let (k, m) = err(&text, &["body1.length=inf"]);
     assert_eq!(k, "load.force");
     assert!(m.contains("force_per_length"), "{m}");
-    let (k, _) = err(&text, &["body1.length=inf", "load={ force_per_length = 1e6 }", "grid.ny=64"]);
+    let (k, _) = err(
+        &text,
+        &[
+            "body1.length=inf",
+            "load={ force_per_length = 1e6 }",
+            "grid.ny=64",
+        ],
+    );
     assert_eq!(k, "grid.ny");
 }
 
@@ -213,12 +237,31 @@ fn ball_load_forms() {
     let by_p = parse(BALL, &[&format!("load={{ max_hertz_pressure = {p0} }}")]).unwrap();
     assert!(close(by_p.load.force, f, 1e-12), "{}", by_p.load.force);
     // W = F / (E' R^2)
-    let by_w = parse(BALL, &[&format!("load={{ dimensionless_load = {} }}", f / (e * r * r))]).unwrap();
+    let by_w = parse(
+        BALL,
+        &[&format!(
+            "load={{ dimensionless_load = {} }}",
+            f / (e * r * r)
+        )],
+    )
+    .unwrap();
     assert!(close(by_w.load.force, f, 1e-12));
     // elliptical: the pressure form is not built yet, force is fine
-    let (k, _) = err(BALL, &["body1.radius_y=0.02", &format!("load={{ max_hertz_pressure = {p0} }}")]);
+    let (k, _) = err(
+        BALL,
+        &[
+            "body1.radius_y=0.02",
+            &format!("load={{ max_hertz_pressure = {p0} }}"),
+        ],
+    );
     assert_eq!(k, "load.max_hertz_pressure");
-    assert_eq!(parse(BALL, &["body1.radius_y=0.02"]).unwrap().body1.radius_y, 0.02);
+    assert_eq!(
+        parse(BALL, &["body1.radius_y=0.02"])
+            .unwrap()
+            .body1
+            .radius_y,
+        0.02
+    );
     let (k, _) = err(BALL, &["load={ force_per_length = 1e5 }"]);
     assert_eq!(k, "load.force_per_length");
 }
@@ -233,12 +276,18 @@ fn dimensionless_speed_and_material() {
         EHL,
         &[
             &format!("motion={{ dimensionless_speed = {u} }}"),
-            &format!("lubricant={{ viscosity = 0.04, dimensionless_material = {g}, density = 846.0 }}"),
+            &format!(
+                "lubricant={{ viscosity = 0.04, dimensionless_material = {g}, density = 846.0 }}"
+            ),
         ],
     )
     .unwrap();
     assert!(close(c.motion.unwrap().entrainment_speed, 2.7, 1e-12));
-    assert!(close(c.lubricant.unwrap().pressure_viscosity_coefficient, 15.9e-9, 1e-12));
+    assert!(close(
+        c.lubricant.unwrap().pressure_viscosity_coefficient,
+        15.9e-9,
+        1e-12
+    ));
 }
 
 #[test]
@@ -246,7 +295,10 @@ fn overrides_apply_before_validation() {
     // a bad value in the file is fixed by --set
     let bad = ROLLERS.replace("force = 30000.0", "force = -1.0");
     assert!(parse(&bad, &[]).is_err());
-    assert_eq!(parse(&bad, &["load.force=5000"]).unwrap().load.force, 5000.0);
+    assert_eq!(
+        parse(&bad, &["load.force=5000"]).unwrap().load.force,
+        5000.0
+    );
     let c = parse(
         ROLLERS,
         &[
@@ -275,12 +327,22 @@ fn rheology_and_profiles() {
     .unwrap();
     assert_eq!(
         c.lubricant.unwrap().rheology,
-        Rheology::Carreau { shear_modulus: 4.5e6, power_law_index: 0.57, limiting_shear_coefficient: None }
+        Rheology::Carreau {
+            shear_modulus: 4.5e6,
+            power_law_index: 0.57,
+            limiting_shear_coefficient: None
+        }
     );
-    let (k, m) = err(EHL, &["lubricant.rheology={ model = \"eyring\", shear_modulus = 4.5e6 }"]);
+    let (k, m) = err(
+        EHL,
+        &["lubricant.rheology={ model = \"eyring\", shear_modulus = 4.5e6 }"],
+    );
     assert_eq!(k, "lubricant.rheology.shear_modulus");
     assert!(m.contains("eyring_stress"), "{m}");
-    let (k, _) = err(ROLLERS, &["body1.profile={ kind = \"chamfer\", edge_length = 3e-3, angle = 0.01 }"]);
+    let (k, _) = err(
+        ROLLERS,
+        &["body1.profile={ kind = \"chamfer\", edge_length = 3e-3, angle = 0.01 }"],
+    );
     assert_eq!(k, "body1.profile.edge_length");
     let (k, m) = err(ROLLERS, &["body1.profile=\"crowned\""]);
     assert_eq!(k, "body1.profile");
