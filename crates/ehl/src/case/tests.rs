@@ -361,3 +361,30 @@ fn features_checked_then_refused() {
     let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].y=-0.0019"]);
     assert_eq!(k, "features[0].y");
 }
+
+#[test]
+fn body_pairs() {
+    let (k, m) = err(
+        BALL,
+        &[
+            "body2={ shape = \"flat\", youngs_modulus = 1e9, poisson_ratio = 0.3 }",
+            "body1={ shape = \"flat\", youngs_modulus = 1e9, poisson_ratio = 0.3 }",
+        ],
+    );
+    assert_eq!(k, "body2.shape");
+    assert!(m.contains("two flats"), "{m}");
+    match parse(
+        ROLLERS,
+        &["body2={ shape = \"ball\", radius = 0.01, youngs_modulus = 1e9, poisson_ratio = 0.3 }"],
+    ) {
+        Err(Error::Unsupported { key, .. }) => assert_eq!(key, "body1.shape"),
+        other => panic!("{other:?}"),
+    }
+    // ball on ball: 1/R = 1/R1 + 1/R2
+    let c = parse(BALL, &["body2={ shape = \"ball\", radius = 0.0125, youngs_modulus = 70e9, poisson_ratio = 0.2 }"]).unwrap();
+    assert!(close(c.reduced_radius(), 0.00625, 1e-12));
+    let (k, _) = err(BALL, &["alignment.tilt=0.01"]);
+    assert_eq!(k, "alignment.tilt");
+    let (k, _) = err(BALL, &["body2.axial_offset=0.001"]);
+    assert_eq!(k, "body2.axial_offset");
+}
