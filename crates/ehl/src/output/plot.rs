@@ -160,7 +160,7 @@ where
     let (w, h) = area.estimate_text_size(text, &style)?;
     let (aw, ah) = area.dim_in_pixel();
     // keep the label inside the area: flip to the left of the point near the right edge
-    let x = if at.0 + 10 + w as i32 + 6 > aw as i32 { at.0 - 10 - w as i32 - 6 } else { at.0 + 10 };
+    let x = if at.0 + 16 + w as i32 + 6 > aw as i32 { at.0 - 16 - w as i32 - 6 } else { at.0 + 16 };
     let y = (at.1 - h as i32 / 2 - 3).clamp(2, ah as i32 - h as i32 - 8);
     area.draw(&Rectangle::new(
         [(x - 4, y - 2), (x + w as i32 + 4, y + h as i32 + 6)],
@@ -235,11 +235,26 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
     let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
     let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+    // equal scales when that costs at most half of the frame (a ball's contact looks round; the
+    // map then keeps next to its colour bar); otherwise fill the frame and say how much the
+    // picture is stretched
+    let (mw, mh) = main.dim_in_pixel();
+    let (w0, h0) = (mw as f64 - 116.0, mh as f64 - 96.0);
+    let stretch = (w0 / xspan) / (h0 / yspan);
+    let (mut hextra, mut vextra) = (0.0, 0.0);
+    if (0.5..=2.0).contains(&stretch) {
+        if stretch > 1.0 {
+            hextra = w0 - w0 / stretch;
+        } else {
+            vextra = h0 - h0 * stretch;
+        }
+    }
+    let (hpad, vpad) = ((hextra / 2.0).round() as i32, (vextra / 2.0).round() as i32);
     let mut chart = ChartBuilder::on(&main)
-        .margin_left(10)
+        .margin_left(10 + 2 * hpad)
         .margin_right(20)
-        .margin_top(10)
-        .margin_bottom(24)
+        .margin_top(10 + vpad)
+        .margin_bottom(24 + vpad)
         .x_label_area_size(62)
         .y_label_area_size(86)
         .build_cartesian_2d(xr.clone(), yr.clone())?;
@@ -295,9 +310,9 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     }
     // the aspect note
     let stretch = (w as f64 / xspan) / (h as f64 / yspan);
-    let note = if stretch > 1.5 {
+    let note = if stretch > 1.05 {
         format!("not to scale: x stretched {}× relative to y", fmt_sig(stretch, 2))
-    } else if stretch < 1.0 / 1.5 {
+    } else if stretch < 1.0 / 1.05 {
         format!("not to scale: y stretched {}× relative to x", fmt_sig(1.0 / stretch, 2))
     } else {
         String::new()
@@ -310,24 +325,25 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
             ((WIDTH - 150) as i32 - 20, mh as i32 - 4),
         )?;
     }
-    draw_colorbar(&bar_area, spec)?;
+    draw_colorbar(&bar_area, spec, vpad)?;
     Ok(())
 }
 
-fn draw_colorbar(area: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawResult<()> {
+fn draw_colorbar(area: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec, vpad: i32) -> DrawResult<()> {
     let span = spec.range.end - spec.range.start;
     let fmt = move |v: &f64| fmt_tick(*v, span);
     let mut bar = ChartBuilder::on(area)
-        .margin_top(10)
-        .margin_bottom(24)
+        .margin_top(10 + vpad)
+        .margin_bottom(24 + vpad)
         .margin_left(8)
         .margin_right(10)
         .x_label_area_size(62)
-        .right_y_label_area_size(90)
+        .right_y_label_area_size(80)
         .build_cartesian_2d(0.0..1.0, spec.range.clone())?;
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
+        .set_tick_mark_size(LabelAreaPosition::Right, 6)
         .y_labels(8)
         .y_label_formatter(&fmt)
         .label_style(text_style(16.0, BLACK))
@@ -408,7 +424,7 @@ fn draw_profile(
     x_range: Range<f64>,
     left: &Axis,
     right: Option<&Axis>,
-    marks: &[(f64, f64, bool, String)],
+    marks: &[(f64, f64, bool, String, RGBColor)],
 ) -> DrawResult<()> {
     let area = titled(root, title, lines)?;
     let xspan = x_range.end - x_range.start;
@@ -500,15 +516,14 @@ fn draw_profile(
         .draw()?;
     let plot = chart.plotting_area().strip_coord_spec();
     let base = chart.plotting_area().get_base_pixel();
-    for (x, y, on_right, label) in marks {
+    for (x, y, on_right, label, color) in marks {
         let p = if *on_right {
             chart.borrow_secondary().backend_coord(&(*x, *y))
         } else {
             chart.backend_coord(&(*x, *y))
         };
         let q = (p.0 - base.0, p.1 - base.1);
-        let color = if *on_right { FILM_COLOR } else { PRESSURE_COLOR };
-        plot.draw(&Circle::new(q, 6, ShapeStyle::from(&color).filled()))?;
+        plot.draw(&Circle::new(q, 6, ShapeStyle::from(color).filled()))?;
         plot.draw(&Circle::new(q, 6, ShapeStyle::from(&BLACK).stroke_width(1)))?;
         boxed_label(&plot, label, q)?;
     }
@@ -671,7 +686,7 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
         if g.ny == 1 {
             let (mut axis, peak) = pressure_axis(solution, 0);
             axis.curves[0].label = "pressure".into();
-            let marks = [(peak.0, peak.1, false, format!("p_max = {} GPa", fmt_sig(peak.1, 4)))];
+            let marks = [(peak.0, peak.1, false, format!("p_max = {} GPa", fmt_sig(peak.1, 4)), PRESSURE_COLOR)];
             draw_profile(
                 root,
                 &case.title,
@@ -744,6 +759,9 @@ pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
     let word = film_word(case);
     let (hmin, kmin) = arg_min(film);
     let (lo, hi, saturates) = film_range(solution, film);
+    // a profile gets some headroom above the colour-map range
+    let shown_top = if g.ny == 1 { 1.25 * hi } else { hi };
+    let saturates = saturates && arg_max(film).0 > shown_top;
     let (unit, scale) = film_unit(hi.max(hmin.abs()));
     let hmin_text = format!("{} {unit}", fmt_sig(hmin * scale, 3));
     let (imin, jmin) = (kmin % g.nx, kmin / g.nx);
@@ -754,29 +772,46 @@ pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
     if g.ny > 1 {
         line1 += &format!(", y = {} mm", fmt_sig(g.y(jmin) * 1e3, 3));
     }
+    if is_dry(case) {
+        line1 = format!("{word} — zero over the contact (dark)");
+        if let Some(area) = solution.summary.contact_area_m2 {
+            line1 += &format!(", contact area {} mm²", fmt_sig(area * 1e6, 3));
+        }
+    }
     if let Some(hc) = solution.summary.central_film_m {
         line1 += &format!(";  central {} {unit}", fmt_sig(hc * scale, 3));
     }
+    let dry = is_dry(case);
     let line2 = if saturates {
-        format!(
-            "colours saturate above {} {unit} (the film outside the loaded zone is thicker); {}",
-            fmt_sig(hi * scale, 3),
-            if film.iter().any(|h| !h.is_finite()) { "grey: no material" } else { "" }
-        )
+        let mut t = format!(
+            "{} above {} {unit} (the {} away from the loaded zone is larger)",
+            if g.ny == 1 { "axis clipped" } else { "colours saturate" },
+            fmt_sig(shown_top * scale, 3),
+            if dry { "gap" } else { "film" }
+        );
+        if film.iter().any(|h| !h.is_finite()) {
+            t += "; grey: no material";
+        }
+        t
     } else {
         convergence_line(solution, case)
     };
+    // a dry contact's minimum gap is zero anywhere in the contact: no marker then
+    let film_marker = |x: f64, y: f64, label: String| if dry { None } else { Some((x, y, label)) };
     render(path, |root| {
         if g.ny == 1 {
             let xs = g.xs();
             let pts: Vec<(f64, f64)> = xs.iter().zip(film).map(|(x, h)| (x * 1e3, h * scale)).collect();
-            let top = (hi * scale) * 1.25;
+            let top = shown_top * scale;
             let axis = Axis {
                 label: format!("{word} ({unit})"),
                 range: nonempty(0.0, top),
                 curves: vec![Curve { pts, color: FILM_COLOR, dashed: false, label: word.into() }],
             };
-            let marks = [(xs[imin] * 1e3, hmin * scale, false, format!("h_min = {hmin_text}"))];
+            let marks: Vec<_> = film_marker(xs[imin] * 1e3, hmin * scale, format!("h_min = {hmin_text}"))
+                .map(|(x, y, l)| (x, y, false, l, FILM_COLOR))
+                .into_iter()
+                .collect();
             draw_profile(root, &case.title, &[line1, line2], x_range_mm(g), &axis, None, &marks)
         } else {
             draw_map(
@@ -791,7 +826,7 @@ pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
                     cmap: ColorMap::Viridis,
                     bar_label: format!("{word} ({unit})"),
                     y_label: y_axis_label(case),
-                    marker: Some((g.x(imin), g.y(jmin), format!("h_min {hmin_text}"))),
+                    marker: film_marker(g.x(imin), g.y(jmin), format!("h_min {hmin_text}")),
                     cross: false,
                 },
             )
@@ -804,7 +839,7 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
     let g = &solution.grid;
     let j = super::centre_row(solution);
     let (axis, peak) = pressure_axis(solution, j);
-    let mut marks = vec![(peak.0, peak.1, false, format!("{} GPa", fmt_sig(peak.1, 4)))];
+    let mut marks = vec![(peak.0, peak.1, false, format!("{} GPa", fmt_sig(peak.1, 4)), PRESSURE_COLOR)];
     let where_ = if g.ny == 1 {
         "infinite line contact".to_string()
     } else {
@@ -822,8 +857,10 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
         let top = if is_dry(case) { arg_max(&h).0 } else { 2.5 * hi };
         let (unit, scale) = film_unit(top);
         let xs = g.xs();
-        marks.push((xs[k] * 1e3, hmin * scale, true, format!("{} {unit}", fmt_sig(hmin * scale, 3))));
-        lines[0] += &format!(";  minimum {word} on this line {} {unit}", fmt_sig(hmin * scale, 3));
+        if !is_dry(case) {
+            marks.push((xs[k] * 1e3, hmin * scale, true, format!("{} {unit}", fmt_sig(hmin * scale, 3)), FILM_COLOR));
+            lines[0] += &format!(";  minimum {word} on this line {} {unit}", fmt_sig(hmin * scale, 3));
+        }
         Axis {
             label: format!("{word} ({unit})"),
             range: nonempty(0.0, top * scale),
