@@ -8,7 +8,12 @@ use std::path::{Path, PathBuf};
 /// (width, height) from a PNG's IHDR chunk.
 fn png_size(path: &Path) -> (u32, u32) {
     let b = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert_eq!(&b[..8], b"\x89PNG\r\n\x1a\n", "{} is not a PNG", path.display());
+    assert_eq!(
+        &b[..8],
+        b"\x89PNG\r\n\x1a\n",
+        "{} is not a PNG",
+        path.display()
+    );
     assert_eq!(&b[12..16], b"IHDR");
     let be = |k: usize| u32::from_be_bytes([b[k], b[k + 1], b[k + 2], b[k + 3]]);
     (be(16), be(20))
@@ -40,7 +45,11 @@ fn every_synthetic_case_gets_its_pictures() {
         write_all(&dir, &case, &sol).unwrap_or_else(|e| panic!("{name}: {e}"));
         for png in ["pressure.png", "film.png", "centerline.png"] {
             let p = dir.join(png);
-            assert_eq!(png_size(&p), (ehl::output::plot::WIDTH, ehl::output::plot::HEIGHT), "{name}/{png}");
+            assert_eq!(
+                png_size(&p),
+                (ehl::output::plot::WIDTH, ehl::output::plot::HEIGHT),
+                "{name}/{png}"
+            );
             // a real picture, not a blank frame: well above the few hundred bytes of an empty PNG
             let len = std::fs::metadata(&p).unwrap().len();
             assert!(len > 20_000, "{name}/{png} is only {len} bytes");

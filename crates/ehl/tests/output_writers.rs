@@ -42,14 +42,17 @@ fn writes_every_file_and_replaces_an_old_folder() {
         ]
     );
     // nothing else left beside it (no temporary or old folder)
-    assert_eq!(entries(&dir.parent().unwrap()), ["out"]);
+    assert_eq!(entries(dir.parent().unwrap()), ["out"]);
     // a dry solution without film: no film.png, no film column
     let (case, mut sol) = synthetic::dry_ball();
     sol.fields.film = None;
     write_all(&dir, &case, &sol).unwrap();
     assert!(!dir.join("film.png").exists());
     let head = std::fs::read_to_string(dir.join("centerline.csv")).unwrap();
-    assert_eq!(head.lines().next().unwrap(), "x_m,pressure_pa,deformation_m");
+    assert_eq!(
+        head.lines().next().unwrap(),
+        "x_m,pressure_pa,deformation_m"
+    );
 }
 
 #[test]
@@ -70,18 +73,28 @@ fn summary_json_has_the_interface_keys() {
     let (case, sol) = synthetic::ehl_ball(false);
     let dir = root.path().join("ehl");
     write_all(&dir, &case, &sol).unwrap();
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-    for k in keys_common
-        .iter()
-        .chain(&["central_film_m", "min_film_m", "min_film_at_m", "friction_coefficient", "friction_force_n"])
-    {
+    let v: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    for k in keys_common.iter().chain(&[
+        "central_film_m",
+        "min_film_m",
+        "min_film_at_m",
+        "friction_coefficient",
+        "friction_force_n",
+    ]) {
         assert!(v.get(*k).is_some(), "summary.json lacks `{k}`");
     }
     assert_eq!(v["version"], ehl::VERSION);
     assert_eq!(v["title"], case.title.as_str());
     assert_eq!(v["converged"], true);
-    assert_eq!(v["max_pressure_pa"].as_f64().unwrap(), sol.summary.max_pressure_pa);
-    assert_eq!(v["min_film_m"].as_f64().unwrap(), sol.summary.min_film_m.unwrap());
+    assert_eq!(
+        v["max_pressure_pa"].as_f64().unwrap(),
+        sol.summary.max_pressure_pa
+    );
+    assert_eq!(
+        v["min_film_m"].as_f64().unwrap(),
+        sol.summary.min_film_m.unwrap()
+    );
     let at = v["max_pressure_at_m"].as_array().unwrap();
     assert_eq!(at.len(), 2);
     assert_eq!(at[1].as_f64().unwrap(), sol.summary.max_pressure_at_m[1]);
@@ -103,7 +116,8 @@ fn summary_json_has_the_interface_keys() {
     let (case, sol) = synthetic::dry_infinite_line();
     let dir = root.path().join("dry");
     write_all(&dir, &case, &sol).unwrap();
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let v: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     for k in keys_common.iter().chain(&["approach_m", "contact_area_m2"]) {
         assert!(v.get(*k).is_some(), "summary.json lacks `{k}`");
     }
@@ -113,13 +127,20 @@ fn summary_json_has_the_interface_keys() {
     assert_eq!(v["case"]["body1"]["length"], "inf");
     assert_eq!(v["case"]["body1"]["profile"]["kind"], "straight");
     assert!(v["case"].get("motion").is_none() && v["case"].get("lubricant").is_none());
-    assert_eq!(v["approach_m"].as_f64().unwrap(), sol.summary.approach_m.unwrap());
+    assert_eq!(
+        v["approach_m"].as_f64().unwrap(),
+        sol.summary.approach_m.unwrap()
+    );
 }
 
 #[test]
 fn npz_reads_back_exactly() {
     let root = tempfile::tempdir().unwrap();
-    for (case, sol) in [synthetic::ehl_ball(false), synthetic::dry_roller(), synthetic::dry_infinite_line()] {
+    for (case, sol) in [
+        synthetic::ehl_ball(false),
+        synthetic::dry_roller(),
+        synthetic::dry_infinite_line(),
+    ] {
         let dir = root.path().join("o");
         write_all(&dir, &case, &sol).unwrap();
         let mut npz = NpzReader::new(std::fs::File::open(dir.join("fields.npz")).unwrap()).unwrap();
@@ -135,7 +156,16 @@ fn npz_reads_back_exactly() {
         let mut expect: Vec<String> = expect.iter().map(|s| format!("{s}.npy")).collect();
         expect.sort();
         // ndarray-npy stores each array as `<name>.npy`; names() reports the stored names
-        let names: Vec<String> = names.iter().map(|n| if n.ends_with(".npy") { n.clone() } else { format!("{n}.npy") }).collect();
+        let names: Vec<String> = names
+            .iter()
+            .map(|n| {
+                if n.ends_with(".npy") {
+                    n.clone()
+                } else {
+                    format!("{n}.npy")
+                }
+            })
+            .collect();
         assert_eq!(names, expect);
         let (nx, ny) = (sol.grid.nx, sol.grid.ny);
         let x: Array1<f64> = npz.by_name("x").unwrap();
@@ -188,7 +218,14 @@ fn csv_profiles_parse_back() {
     let (head, rows) = parse_csv(&std::fs::read_to_string(dir.join("centerline.csv")).unwrap());
     assert_eq!(
         head,
-        ["x_m", "pressure_pa", "deformation_m", "film_m", "viscosity_pa_s", "density_kg_m3"]
+        [
+            "x_m",
+            "pressure_pa",
+            "deformation_m",
+            "film_m",
+            "viscosity_pa_s",
+            "density_kg_m3"
+        ]
     );
     assert_eq!(rows.len(), g.nx);
     // 96 rows: y = 0 is a cell edge; the nearest centres are rows 47 and 48, the writer takes 47
@@ -216,7 +253,10 @@ fn csv_profiles_parse_back() {
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0][1], sol.summary.max_pressure_pa);
     let (_, rows) = parse_csv(&std::fs::read_to_string(dir.join("centerline.csv")).unwrap());
-    assert_eq!(rows.iter().map(|r| r[1]).collect::<Vec<_>>(), sol.fields.pressure);
+    assert_eq!(
+        rows.iter().map(|r| r[1]).collect::<Vec<_>>(),
+        sol.fields.pressure
+    );
 }
 
 /// Reads one ASCII line from `b` at `*pos`.
@@ -248,10 +288,16 @@ fn vtk_header_and_counts_are_consistent() {
         let mut pos = 0;
         assert_eq!(line(&b, &mut pos), "# vtk DataFile Version 3.0");
         let title = line(&b, &mut pos);
-        assert!(title.len() < 256 && title.contains("pressure Pa"), "{title}");
+        assert!(
+            title.len() < 256 && title.contains("pressure Pa"),
+            "{title}"
+        );
         assert_eq!(line(&b, &mut pos), "BINARY");
         assert_eq!(line(&b, &mut pos), "DATASET RECTILINEAR_GRID");
-        assert_eq!(line(&b, &mut pos), format!("DIMENSIONS {} {} 1", g.nx, g.ny));
+        assert_eq!(
+            line(&b, &mut pos),
+            format!("DIMENSIONS {} {} 1", g.nx, g.ny)
+        );
         assert_eq!(line(&b, &mut pos), format!("X_COORDINATES {} double", g.nx));
         assert_eq!(doubles(&b, &mut pos, g.nx), g.xs());
         assert_eq!(line(&b, &mut pos), format!("Y_COORDINATES {} double", g.ny));
@@ -262,7 +308,12 @@ fn vtk_header_and_counts_are_consistent() {
         let mut seen = Vec::new();
         while pos < b.len() {
             let head = line(&b, &mut pos);
-            let name = head.strip_prefix("SCALARS ").unwrap().strip_suffix(" double 1").unwrap().to_string();
+            let name = head
+                .strip_prefix("SCALARS ")
+                .unwrap()
+                .strip_suffix(" double 1")
+                .unwrap()
+                .to_string();
             assert_eq!(line(&b, &mut pos), "LOOKUP_TABLE default");
             let v = doubles(&b, &mut pos, g.len());
             let want: &[f64] = match name.as_str() {
@@ -291,7 +342,10 @@ fn non_finite_values_are_refused_by_name_and_nothing_is_written() {
     let mut sol = good.clone();
     sol.fields.pressure[1234] = f64::NAN;
     let e = write_all(&dir, &case, &sol).unwrap_err().to_string();
-    assert!(e.contains("`pressure`") && e.contains("NaN") && e.contains("out"), "{e}");
+    assert!(
+        e.contains("`pressure`") && e.contains("NaN") && e.contains("out"),
+        "{e}"
+    );
 
     let mut sol = good.clone();
     sol.fields.viscosity.as_mut().unwrap()[7] = f64::INFINITY;
@@ -319,7 +373,11 @@ fn non_finite_values_are_refused_by_name_and_nothing_is_written() {
     assert!(e.contains("`deformation`") && e.contains("9215"), "{e}");
 
     // nothing was created: no folder, no temporary folder
-    assert!(entries(root.path()).is_empty(), "{:?}", entries(root.path()));
+    assert!(
+        entries(root.path()).is_empty(),
+        "{:?}",
+        entries(root.path())
+    );
 
     // an existing folder survives a refused write untouched
     write_all(&dir, &case, &good).unwrap();
@@ -357,9 +415,14 @@ fn an_unusable_target_is_an_error_naming_it() {
     let (case, sol) = synthetic::dry_ball();
     // the target exists as a file
     let e = write_all(&file, &case, &sol).unwrap_err().to_string();
-    assert!(e.contains("plain-file") && e.contains("not a folder"), "{e}");
+    assert!(
+        e.contains("plain-file") && e.contains("not a folder"),
+        "{e}"
+    );
     // the parent is a file
-    let e = write_all(&file.join("out"), &case, &sol).unwrap_err().to_string();
+    let e = write_all(&file.join("out"), &case, &sol)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("plain-file"), "{e}");
     assert_eq!(entries(root.path()), ["plain-file"]);
 }

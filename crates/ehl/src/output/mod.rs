@@ -54,7 +54,11 @@ pub const CENTERLINE_PNG: &str = "centerline.png";
 /// value (naming the field or summary key), any I/O or drawing failure. After an error neither
 /// `dir` nor the temporary folder has changed or remains.
 pub fn write_all(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
-    write_with(dir, |tmp| write_files(tmp, case, solution), || validate(dir, solution))
+    write_with(
+        dir,
+        |tmp| write_files(tmp, case, solution),
+        || validate(dir, solution),
+    )
 }
 
 /// Checks that a solution can be written: field lengths, finite values, finite summary figures.
@@ -68,9 +72,16 @@ pub fn validate(dir: &Path, solution: &Solution) -> Result<()> {
     if g.nx == 0 || g.ny == 0 {
         return Err(err(format!("empty grid ({} x {} cells)", g.nx, g.ny)));
     }
-    for (name, v) in [("dx", g.dx), ("dy", g.dy), ("x_min", g.x_min), ("y_min", g.y_min)] {
+    for (name, v) in [
+        ("dx", g.dx),
+        ("dy", g.dy),
+        ("x_min", g.x_min),
+        ("y_min", g.y_min),
+    ] {
         if !v.is_finite() || ((name == "dx" || name == "dy") && v <= 0.0) {
-            return Err(err(format!("grid.{name} = {v} is not a finite positive size")));
+            return Err(err(format!(
+                "grid.{name} = {v} is not a finite positive size"
+            )));
         }
     }
     for (name, field) in named_fields(solution) {
@@ -98,7 +109,12 @@ pub fn validate(dir: &Path, solution: &Solution) -> Result<()> {
             )));
         }
     }
-    if solution.fields.film.as_ref().is_some_and(|f| f.iter().all(|v| !v.is_finite())) {
+    if solution
+        .fields
+        .film
+        .as_ref()
+        .is_some_and(|f| f.iter().all(|v| !v.is_finite()))
+    {
         return Err(err("field `film` has no finite value".into()));
     }
     summary::check_finite(&solution.summary).map_err(|key| {
@@ -171,7 +187,11 @@ fn write_with(
         return Err(io_err(dir, "exists and is not a folder; not replacing it"));
     }
     std::fs::create_dir_all(&parent).map_err(|e| io_err(&parent, e))?;
-    let tag = format!("{}-{}", std::process::id(), SEQ.fetch_add(1, Ordering::Relaxed));
+    let tag = format!(
+        "{}-{}",
+        std::process::id(),
+        SEQ.fetch_add(1, Ordering::Relaxed)
+    );
     let tmp = parent.join(format!(".{name}.tmp-{tag}"));
     if tmp.exists() {
         // a leftover of a crashed process with the same pid: it is ours to clear

@@ -17,8 +17,10 @@ pub fn write(path: &Path, solution: &Solution) -> Result<()> {
     let g = &solution.grid;
     let file = std::fs::File::create(path).map_err(|e| err(&e))?;
     let mut npz = NpzWriter::new(std::io::BufWriter::new(file));
-    npz.add_array("x", &Array1::from(g.xs())).map_err(|e| err(&e))?;
-    npz.add_array("y", &Array1::from(g.ys())).map_err(|e| err(&e))?;
+    npz.add_array("x", &Array1::from(g.xs()))
+        .map_err(|e| err(&e))?;
+    npz.add_array("y", &Array1::from(g.ys()))
+        .map_err(|e| err(&e))?;
     for (name, field) in super::named_fields(solution) {
         let a = Array2::from_shape_vec((g.ny, g.nx), field.to_vec())
             .map_err(|e| err(&format!("field `{name}`: {e}")))?;

@@ -57,7 +57,10 @@ fn draw_err(path: &Path, e: impl std::fmt::Display) -> Error {
     }
 }
 
-fn render(path: &Path, f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>) -> Result<()> {
+fn render(
+    path: &Path,
+    f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
+) -> Result<()> {
     ensure_font().map_err(|e| draw_err(path, e))?;
     let root = BitMapBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
@@ -139,7 +142,11 @@ fn titled<'a>(
 ) -> DrawResult<DrawingArea<BitMapBackend<'a>, Shift>> {
     let height = 44 + 24 * lines.len() as u32;
     let (band, rest) = root.split_vertically(height);
-    let t = if title.trim().is_empty() { "(untitled case)" } else { title.trim() };
+    let t = if title.trim().is_empty() {
+        "(untitled case)"
+    } else {
+        title.trim()
+    };
     band.draw_text(t, &text_style(26.0, BLACK), (24, 12))?;
     for (k, line) in lines.iter().enumerate() {
         band.draw_text(line, &text_style(18.0, GREY), (24, 46 + 24 * k as i32))?;
@@ -160,7 +167,11 @@ where
     let (w, h) = area.estimate_text_size(text, &style)?;
     let (aw, ah) = area.dim_in_pixel();
     // keep the label inside the area: flip to the left of the point near the right edge
-    let x = if at.0 + 16 + w as i32 + 6 > aw as i32 { at.0 - 16 - w as i32 - 6 } else { at.0 + 16 };
+    let x = if at.0 + 16 + w as i32 + 6 > aw as i32 {
+        at.0 - 16 - w as i32 - 6
+    } else {
+        at.0 + 16
+    };
     let y = (at.1 - h as i32 / 2 - 3).clamp(2, ah as i32 - h as i32 - 8);
     area.draw(&Rectangle::new(
         [(x - 4, y - 2), (x + w as i32 + 4, y + h as i32 + 6)],
@@ -298,9 +309,18 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
         let base = chart.plotting_area().get_base_pixel();
         let q = (p.0 - base.0, p.1 - base.1);
         if spec.cross {
-            for (d, style) in [(9, ShapeStyle::from(&WHITE).stroke_width(5)), (8, ShapeStyle::from(&BLACK).stroke_width(2))] {
-                plot.draw(&PathElement::new(vec![(q.0 - d, q.1), (q.0 + d, q.1)], style))?;
-                plot.draw(&PathElement::new(vec![(q.0, q.1 - d), (q.0, q.1 + d)], style))?;
+            for (d, style) in [
+                (9, ShapeStyle::from(&WHITE).stroke_width(5)),
+                (8, ShapeStyle::from(&BLACK).stroke_width(2)),
+            ] {
+                plot.draw(&PathElement::new(
+                    vec![(q.0 - d, q.1), (q.0 + d, q.1)],
+                    style,
+                ))?;
+                plot.draw(&PathElement::new(
+                    vec![(q.0, q.1 - d), (q.0, q.1 + d)],
+                    style,
+                ))?;
             }
         } else {
             plot.draw(&Circle::new(q, 8, ShapeStyle::from(&WHITE).stroke_width(4)))?;
@@ -311,9 +331,15 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     // the aspect note
     let stretch = (w as f64 / xspan) / (h as f64 / yspan);
     let note = if stretch > 1.05 {
-        format!("not to scale: x stretched {}× relative to y", fmt_sig(stretch, 2))
+        format!(
+            "not to scale: x stretched {}× relative to y",
+            fmt_sig(stretch, 2)
+        )
     } else if stretch < 1.0 / 1.05 {
-        format!("not to scale: y stretched {}× relative to x", fmt_sig(1.0 / stretch, 2))
+        format!(
+            "not to scale: y stretched {}× relative to x",
+            fmt_sig(1.0 / stretch, 2)
+        )
     } else {
         String::new()
     };
@@ -329,7 +355,11 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     Ok(())
 }
 
-fn draw_colorbar(area: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec, vpad: i32) -> DrawResult<()> {
+fn draw_colorbar(
+    area: &DrawingArea<BitMapBackend, Shift>,
+    spec: &MapSpec,
+    vpad: i32,
+) -> DrawResult<()> {
     let span = spec.range.end - spec.range.start;
     let fmt = move |v: &f64| fmt_tick(*v, span);
     let mut bar = ChartBuilder::on(area)
@@ -411,8 +441,16 @@ fn clip(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
 }
 
 fn crossing(a: (f64, f64), b: (f64, f64), range: &Range<f64>) -> (f64, f64) {
-    let edge = if a.1.max(b.1) > range.end { range.end } else { range.start };
-    let t = if b.1 != a.1 { (edge - a.1) / (b.1 - a.1) } else { 0.0 };
+    let edge = if a.1.max(b.1) > range.end {
+        range.end
+    } else {
+        range.start
+    };
+    let t = if b.1 != a.1 {
+        (edge - a.1) / (b.1 - a.1)
+    } else {
+        0.0
+    };
     (a.0 + t.clamp(0.0, 1.0) * (b.0 - a.0), edge)
 }
 
@@ -558,17 +596,20 @@ fn film_word(case: &Case) -> &'static str {
 
 /// (max, index) of the finite values.
 fn arg_max(v: &[f64]) -> (f64, usize) {
-    v.iter()
-        .enumerate()
-        .filter(|(_, x)| x.is_finite())
-        .fold((f64::NEG_INFINITY, 0), |a, (k, &x)| if x > a.0 { (x, k) } else { a })
+    v.iter().enumerate().filter(|(_, x)| x.is_finite()).fold(
+        (f64::NEG_INFINITY, 0),
+        |a, (k, &x)| if x > a.0 { (x, k) } else { a },
+    )
 }
 
 fn arg_min(v: &[f64]) -> (f64, usize) {
     v.iter()
         .enumerate()
         .filter(|(_, x)| x.is_finite())
-        .fold((f64::INFINITY, 0), |a, (k, &x)| if x < a.0 { (x, k) } else { a })
+        .fold(
+            (f64::INFINITY, 0),
+            |a, (k, &x)| if x < a.0 { (x, k) } else { a },
+        )
 }
 
 /// A non-empty colour or axis range from `lo`, `hi`.
@@ -686,11 +727,20 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
         if g.ny == 1 {
             let (mut axis, peak) = pressure_axis(solution, 0);
             axis.curves[0].label = "pressure".into();
-            let marks = [(peak.0, peak.1, false, format!("p_max = {} GPa", fmt_sig(peak.1, 4)), PRESSURE_COLOR)];
+            let marks = [(
+                peak.0,
+                peak.1,
+                false,
+                format!("p_max = {} GPa", fmt_sig(peak.1, 4)),
+                PRESSURE_COLOR,
+            )];
             draw_profile(
                 root,
                 &case.title,
-                &[format!("pressure, infinite line contact — {}", pmax_line(solution)), convergence_line(solution, case)],
+                &[
+                    format!("pressure, infinite line contact — {}", pmax_line(solution)),
+                    convergence_line(solution, case),
+                ],
                 x_range_mm(g),
                 &axis,
                 None,
@@ -703,7 +753,10 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
                 root,
                 &MapSpec {
                     title: &case.title,
-                    lines: vec![format!("pressure — {}", pmax_line(solution)), convergence_line(solution, case)],
+                    lines: vec![
+                        format!("pressure — {}", pmax_line(solution)),
+                        convergence_line(solution, case),
+                    ],
                     grid: g,
                     values: &solution.fields.pressure,
                     scale: 1e-9,
@@ -741,7 +794,7 @@ fn film_range(solution: &Solution, film: &[f64]) -> (f64, f64, bool) {
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
     };
-    if !(hi > lo) {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         hi = top;
     }
     let saturates = top > hi;
@@ -785,7 +838,11 @@ pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
     let line2 = if saturates {
         let mut t = format!(
             "{} above {} {unit} (the {} away from the loaded zone is larger)",
-            if g.ny == 1 { "axis clipped" } else { "colours saturate" },
+            if g.ny == 1 {
+                "axis clipped"
+            } else {
+                "colours saturate"
+            },
             fmt_sig(shown_top * scale, 3),
             if dry { "gap" } else { "film" }
         );
@@ -801,18 +858,36 @@ pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
     render(path, |root| {
         if g.ny == 1 {
             let xs = g.xs();
-            let pts: Vec<(f64, f64)> = xs.iter().zip(film).map(|(x, h)| (x * 1e3, h * scale)).collect();
+            let pts: Vec<(f64, f64)> = xs
+                .iter()
+                .zip(film)
+                .map(|(x, h)| (x * 1e3, h * scale))
+                .collect();
             let top = shown_top * scale;
             let axis = Axis {
                 label: format!("{word} ({unit})"),
                 range: nonempty(0.0, top),
-                curves: vec![Curve { pts, color: FILM_COLOR, dashed: false, label: word.into() }],
+                curves: vec![Curve {
+                    pts,
+                    color: FILM_COLOR,
+                    dashed: false,
+                    label: word.into(),
+                }],
             };
-            let marks: Vec<_> = film_marker(xs[imin] * 1e3, hmin * scale, format!("h_min = {hmin_text}"))
-                .map(|(x, y, l)| (x, y, false, l, FILM_COLOR))
-                .into_iter()
-                .collect();
-            draw_profile(root, &case.title, &[line1, line2], x_range_mm(g), &axis, None, &marks)
+            let marks: Vec<_> =
+                film_marker(xs[imin] * 1e3, hmin * scale, format!("h_min = {hmin_text}"))
+                    .map(|(x, y, l)| (x, y, false, l, FILM_COLOR))
+                    .into_iter()
+                    .collect();
+            draw_profile(
+                root,
+                &case.title,
+                &[line1, line2],
+                x_range_mm(g),
+                &axis,
+                None,
+                &marks,
+            )
         } else {
             draw_map(
                 root,
@@ -839,13 +914,25 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
     let g = &solution.grid;
     let j = super::centre_row(solution);
     let (axis, peak) = pressure_axis(solution, j);
-    let mut marks = vec![(peak.0, peak.1, false, format!("{} GPa", fmt_sig(peak.1, 4)), PRESSURE_COLOR)];
+    let mut marks = vec![(
+        peak.0,
+        peak.1,
+        false,
+        format!("{} GPa", fmt_sig(peak.1, 4)),
+        PRESSURE_COLOR,
+    )];
     let where_ = if g.ny == 1 {
         "infinite line contact".to_string()
     } else {
-        format!("along x at y = {} mm (axial centre)", fmt_sig(g.y(j) * 1e3, 3))
+        format!(
+            "along x at y = {} mm (axial centre)",
+            fmt_sig(g.y(j) * 1e3, 3)
+        )
     };
-    let mut lines = vec![format!("centre line {where_}"), convergence_line(solution, case)];
+    let mut lines = vec![
+        format!("centre line {where_}"),
+        convergence_line(solution, case),
+    ];
     let right = solution.fields.film.as_deref().map(|film| {
         let word = film_word(case);
         let h = row(film, g, j);
@@ -854,18 +941,35 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
         let _ = lo;
         // the film axis: from 0 to 2.5x the top of the loaded-zone film so the curve sits below
         // the pressure; dry: the whole gap along the line
-        let top = if is_dry(case) { arg_max(&h).0 } else { 2.5 * hi };
+        let top = if is_dry(case) {
+            arg_max(&h).0
+        } else {
+            2.5 * hi
+        };
         let (unit, scale) = film_unit(top);
         let xs = g.xs();
         if !is_dry(case) {
-            marks.push((xs[k] * 1e3, hmin * scale, true, format!("{} {unit}", fmt_sig(hmin * scale, 3)), FILM_COLOR));
-            lines[0] += &format!(";  minimum {word} on this line {} {unit}", fmt_sig(hmin * scale, 3));
+            marks.push((
+                xs[k] * 1e3,
+                hmin * scale,
+                true,
+                format!("{} {unit}", fmt_sig(hmin * scale, 3)),
+                FILM_COLOR,
+            ));
+            lines[0] += &format!(
+                ";  minimum {word} on this line {} {unit}",
+                fmt_sig(hmin * scale, 3)
+            );
         }
         Axis {
             label: format!("{word} ({unit})"),
             range: nonempty(0.0, top * scale),
             curves: vec![Curve {
-                pts: xs.iter().zip(&h).map(|(x, h)| (x * 1e3, h * scale)).collect(),
+                pts: xs
+                    .iter()
+                    .zip(&h)
+                    .map(|(x, h)| (x * 1e3, h * scale))
+                    .collect(),
                 color: FILM_COLOR,
                 dashed: false,
                 label: format!("{word} (right axis)"),
@@ -873,7 +977,15 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
         }
     });
     render(path, |root| {
-        draw_profile(root, &case.title, &lines, x_range_mm(g), &axis, right.as_ref(), &marks)
+        draw_profile(
+            root,
+            &case.title,
+            &lines,
+            x_range_mm(g),
+            &axis,
+            right.as_ref(),
+            &marks,
+        )
     })
 }
 
@@ -889,7 +1001,7 @@ mod tests {
         assert_eq!(fmt_tick(0.30000000000000004, 1.0), "0.3");
         assert_eq!(fmt_sig(1.23456, 4), "1.235");
         assert_eq!(fmt_sig(0.0123456, 3), "0.0123");
-        assert_eq!(fmt_sig(1234.5, 3), "1235");
+        assert_eq!(fmt_sig(1234.6, 3), "1235");
         assert_eq!(film_unit(0.5e-6).0, "nm");
         assert_eq!(film_unit(2e-6).0, "µm");
     }
@@ -900,6 +1012,8 @@ mod tests {
         let pieces = clip(&pts, &(0.0..1.0));
         assert_eq!(pieces.len(), 2);
         assert_eq!(pieces[0], vec![(0.0, 0.5), (1.0 / 3.0, 1.0)]);
-        assert_eq!(pieces[1], vec![(5.0 / 3.0, 1.0), (2.0, 0.5)]);
+        // the crossing is interpolated: equal to rounding
+        assert!((pieces[1][0].0 - 5.0 / 3.0).abs() < 1e-15 && pieces[1][0].1 == 1.0);
+        assert_eq!(pieces[1][1], (2.0, 0.5));
     }
 }

@@ -16,7 +16,11 @@ fn steel(shape: Shape, radius: f64, length: f64) -> Body {
     Body {
         shape,
         radius,
-        radius_y: if shape == Shape::Ball { radius } else { f64::INFINITY },
+        radius_y: if shape == Shape::Ball {
+            radius
+        } else {
+            f64::INFINITY
+        },
         length,
         youngs_modulus: 210e9,
         poisson_ratio: 0.3,
@@ -54,10 +58,11 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
 
 fn summary_from(grid: &Grid, fields: &Fields, ph: f64, b: f64) -> Summary {
     let p = &fields.pressure;
-    let (k, pm) = p
-        .iter()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |a, (k, &v)| if v > a.1 { (k, v) } else { a });
+    let (k, pm) =
+        p.iter().enumerate().fold(
+            (0, f64::NEG_INFINITY),
+            |a, (k, &v)| if v > a.1 { (k, v) } else { a },
+        );
     let (i, j) = (k % grid.nx, k / grid.nx);
     Summary {
         converged: true,
@@ -107,7 +112,14 @@ pub fn dry_ball() -> (Case, Solution) {
         steel(Shape::Ball, radius, f64::INFINITY),
         force,
         force,
-        GridSpec { nx: 96, ny: 96, x_min: -3.0, x_max: 3.0, y_min: -3.0, y_max: 3.0 },
+        GridSpec {
+            nx: 96,
+            ny: 96,
+            x_min: -3.0,
+            x_max: 3.0,
+            y_min: -3.0,
+            y_max: 3.0,
+        },
     );
     let e = case.reduced_modulus();
     let rr = case.reduced_radius();
@@ -126,10 +138,23 @@ pub fn dry_ball() -> (Case, Solution) {
             gap[k] = (r * r / (2.0 * rr) + w[k] - h.approach).max(0.0);
         }
     }
-    let fields = Fields { pressure: p, deformation: w, film: Some(gap), viscosity: None, density: None };
+    let fields = Fields {
+        pressure: p,
+        deformation: w,
+        film: Some(gap),
+        viscosity: None,
+        density: None,
+    };
     let mut summary = summary_from(&grid, &fields, h.p0, a);
     summary.approach_m = Some(h.approach);
-    (case, Solution { grid, fields, summary })
+    (
+        case,
+        Solution {
+            grid,
+            fields,
+            summary,
+        },
+    )
 }
 
 /// Line-contact pressure with end peaks: Hertz across x, times an axial factor that rises near
@@ -152,12 +177,22 @@ pub fn dry_roller() -> (Case, Solution) {
         steel(Shape::Roller, radius, length),
         force,
         force / length,
-        GridSpec { nx: 64, ny: 160, x_min: -3.0, x_max: 2.0, y_min: -1.0, y_max: 1.0 },
+        GridSpec {
+            nx: 64,
+            ny: 160,
+            x_min: -3.0,
+            x_max: 2.0,
+            y_min: -1.0,
+            y_max: 1.0,
+        },
     );
     let e = case.reduced_modulus();
     let rr = case.reduced_radius();
     let w1 = force / length;
-    let (b, ph) = (units::hertz_line_half_width(w1, rr, e), units::hertz_line_pressure(w1, rr, e));
+    let (b, ph) = (
+        units::hertz_line_half_width(w1, rr, e),
+        units::hertz_line_pressure(w1, rr, e),
+    );
     let grid = Grid::new(64, 160, -3.0 * b, 2.0 * b, -0.5 * length, 0.5 * length);
     let approach = 2e-6;
     let n = grid.len();
@@ -171,10 +206,23 @@ pub fn dry_roller() -> (Case, Solution) {
             w[k] = gap[k] - x * x / (2.0 * rr) + approach;
         }
     }
-    let fields = Fields { pressure: p, deformation: w, film: Some(gap), viscosity: None, density: None };
+    let fields = Fields {
+        pressure: p,
+        deformation: w,
+        film: Some(gap),
+        viscosity: None,
+        density: None,
+    };
     let mut summary = summary_from(&grid, &fields, ph, b);
     summary.approach_m = Some(approach);
-    (case, Solution { grid, fields, summary })
+    (
+        case,
+        Solution {
+            grid,
+            fields,
+            summary,
+        },
+    )
 }
 
 /// Dry infinite line contact, R = 10 mm on a flat, 1e6 N/m: the Hertz profile on 200 cells over
@@ -186,21 +234,51 @@ pub fn dry_infinite_line() -> (Case, Solution) {
         steel(Shape::Roller, radius, f64::INFINITY),
         w1,
         w1,
-        GridSpec { nx: 200, ny: 1, x_min: -3.0, x_max: 2.0, y_min: -0.5, y_max: 0.5 },
+        GridSpec {
+            nx: 200,
+            ny: 1,
+            x_min: -3.0,
+            x_max: 2.0,
+            y_min: -0.5,
+            y_max: 0.5,
+        },
     );
     let e = case.reduced_modulus();
     let rr = case.reduced_radius();
-    let (b, ph) = (units::hertz_line_half_width(w1, rr, e), units::hertz_line_pressure(w1, rr, e));
+    let (b, ph) = (
+        units::hertz_line_half_width(w1, rr, e),
+        units::hertz_line_pressure(w1, rr, e),
+    );
     let grid = Grid::new(200, 1, -3.0 * b, 2.0 * b, -0.5, 0.5);
     let approach = 5e-6;
     let xs = grid.xs();
-    let p = xs.iter().map(|x| ph * (1.0 - (x / b).powi(2)).max(0.0).sqrt()).collect();
+    let p = xs
+        .iter()
+        .map(|x| ph * (1.0 - (x / b).powi(2)).max(0.0).sqrt())
+        .collect();
     let gap: Vec<f64> = xs.iter().map(|x| line_gap(*x, b, rr)).collect();
-    let w = xs.iter().zip(&gap).map(|(x, g)| g - x * x / (2.0 * rr) + approach).collect();
-    let fields = Fields { pressure: p, deformation: w, film: Some(gap), viscosity: None, density: None };
+    let w = xs
+        .iter()
+        .zip(&gap)
+        .map(|(x, g)| g - x * x / (2.0 * rr) + approach)
+        .collect();
+    let fields = Fields {
+        pressure: p,
+        deformation: w,
+        film: Some(gap),
+        viscosity: None,
+        density: None,
+    };
     let mut summary = summary_from(&grid, &fields, ph, b);
     summary.approach_m = Some(approach);
-    (case, Solution { grid, fields, summary })
+    (
+        case,
+        Solution {
+            grid,
+            fields,
+            summary,
+        },
+    )
 }
 
 /// Lubricated ball R = 12.5 mm on a flat, 15 N: Hertz-like pressure with an outlet spike, a
@@ -214,10 +292,20 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
         steel(Shape::Ball, radius, f64::INFINITY),
         force,
         force,
-        GridSpec { nx: 96, ny: 96, x_min: -3.0, x_max: 3.0, y_min: -3.0, y_max: 3.0 },
+        GridSpec {
+            nx: 96,
+            ny: 96,
+            x_min: -3.0,
+            x_max: 3.0,
+            y_min: -3.0,
+            y_max: 3.0,
+        },
     );
     case.kind = Kind::Ehl;
-    case.motion = Some(Motion { entrainment_speed: 0.09, slide_to_roll: 0.0 });
+    case.motion = Some(Motion {
+        entrainment_speed: 0.09,
+        slide_to_roll: 0.0,
+    });
     case.lubricant = Some(Lubricant {
         viscosity: 0.25,
         pressure_viscosity_coefficient: 22e-9,
@@ -257,8 +345,10 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
             let spike = 0.35 * (-((x - 0.85 * a) / (0.05 * a)).powi(2)).exp() * dome.sqrt();
             let p = h.p0 * (dome + inlet + spike);
             // horseshoe: thinner towards the outlet and the sides, rising outside as the dry gap
-            let rim = (-((r - 0.9 * a) / (0.12 * a)).powi(2)).exp() * (0.5 + 0.5 * x / r.max(1e-12));
-            let film = hc * (1.0 - 0.45 * rim) + (r * r / (2.0 * rr) + point_deflection(r, a, rr) - h.approach).max(0.0);
+            let rim =
+                (-((r - 0.9 * a) / (0.12 * a)).powi(2)).exp() * (0.5 + 0.5 * x / r.max(1e-12));
+            let film = hc * (1.0 - 0.45 * rim)
+                + (r * r / (2.0 * rr) + point_deflection(r, a, rr) - h.approach).max(0.0);
             f.pressure[k] = p;
             f.deformation[k] = point_deflection(r, a, rr);
             f.film.as_mut().unwrap()[k] = film;
@@ -269,15 +359,23 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
     let mut summary = summary_from(&grid, &f, h.p0, a);
     summary.contact_area_m2 = None;
     let film = f.film.as_ref().unwrap();
-    let (kmin, hmin) = film
-        .iter()
-        .enumerate()
-        .fold((0, f64::INFINITY), |acc, (k, &v)| if v < acc.1 { (k, v) } else { acc });
+    let (kmin, hmin) =
+        film.iter().enumerate().fold(
+            (0, f64::INFINITY),
+            |acc, (k, &v)| if v < acc.1 { (k, v) } else { acc },
+        );
     let kc = grid.idx(grid.nx / 2, grid.ny / 2);
     summary.central_film_m = Some(film[kc]);
     summary.min_film_m = Some(hmin);
     summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);
     summary.friction_coefficient = Some(0.004);
     summary.friction_force_n = Some(0.06);
-    (case, Solution { grid, fields: f, summary })
+    (
+        case,
+        Solution {
+            grid,
+            fields: f,
+            summary,
+        },
+    )
 }

@@ -30,9 +30,16 @@ pub fn to_bytes(case: &Case, solution: &Solution) -> Vec<u8> {
     let g = &solution.grid;
     let fields = super::named_fields(solution);
     let mut out = Vec::with_capacity(8 * g.len() * (fields.len() + 1) + 4096);
-    let units: Vec<String> = fields.iter().map(|(n, _)| format!("{n} {}", unit(n))).collect();
+    let units: Vec<String> = fields
+        .iter()
+        .map(|(n, _)| format!("{n} {}", unit(n)))
+        .collect();
     // header line: at most 256 characters, one line
-    let title: String = case.title.chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
+    let title: String = case
+        .title
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
     let mut header = format!(
         "ehl {} | {} | x y in m; {}",
         crate::VERSION,
@@ -46,7 +53,10 @@ pub fn to_bytes(case: &Case, solution: &Solution) -> Vec<u8> {
         }
         header.truncate(cut);
     }
-    let _ = writeln!(out, "# vtk DataFile Version 3.0\n{header}\nBINARY\nDATASET RECTILINEAR_GRID");
+    let _ = writeln!(
+        out,
+        "# vtk DataFile Version 3.0\n{header}\nBINARY\nDATASET RECTILINEAR_GRID"
+    );
     let _ = writeln!(out, "DIMENSIONS {} {} 1", g.nx, g.ny);
     let put = |out: &mut Vec<u8>, v: &[f64]| {
         for x in v {
