@@ -147,11 +147,35 @@ fn titled<'a>(
     } else {
         title.trim()
     };
-    band.draw_text(t, &text_style(26.0, BLACK), (24, 12))?;
+    band.draw_text(&fit(&band, t, 26.0)?, &text_style(26.0, BLACK), (24, 12))?;
     for (k, line) in lines.iter().enumerate() {
-        band.draw_text(line, &text_style(18.0, GREY), (24, 46 + 24 * k as i32))?;
+        band.draw_text(
+            &fit(&band, line, 18.0)?,
+            &text_style(18.0, GREY),
+            (24, 46 + 24 * k as i32),
+        )?;
     }
     Ok(rest)
+}
+
+/// `text` shortened with an ellipsis to fit the width of `area` (less 48 px of margins).
+fn fit<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    size: f64,
+) -> DrawResult<String>
+where
+    DB::ErrorType: 'static,
+{
+    let max = area.dim_in_pixel().0.saturating_sub(48);
+    let style = text_style(size, BLACK);
+    let mut t = text.to_string();
+    let mut n = t.chars().count();
+    while n > 1 && area.estimate_text_size(&t, &style)?.0 > max {
+        n -= 1;
+        t = text.chars().take(n).collect::<String>() + "…";
+    }
+    Ok(t)
 }
 
 /// A label with a white box behind it, anchored at its left-centre on `at` (px).
@@ -543,15 +567,6 @@ fn draw_profile(
             }
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .margin(12)
-        .legend_area_size(36)
-        .label_font(text_style(16.0, BLACK))
-        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
-        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
-        .draw()?;
     let plot = chart.plotting_area().strip_coord_spec();
     let base = chart.plotting_area().get_base_pixel();
     for (x, y, on_right, label, color) in marks {
@@ -565,6 +580,16 @@ fn draw_profile(
         plot.draw(&Circle::new(q, 6, ShapeStyle::from(&BLACK).stroke_width(1)))?;
         boxed_label(&plot, label, q)?;
     }
+    // the legend last, so that nothing covers it
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .margin(12)
+        .legend_area_size(36)
+        .label_font(text_style(16.0, BLACK))
+        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
+        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+        .draw()?;
     Ok(())
 }
 

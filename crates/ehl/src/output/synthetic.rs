@@ -173,7 +173,7 @@ fn end_peak_factor(y: f64, half_length: f64) -> f64 {
 pub fn dry_roller() -> (Case, Solution) {
     let (radius, length, force) = (5e-3, 10e-3, 5000.0);
     let case = base_case(
-        "Straight roller R = 5 mm, L = 10 mm on a flat, 5 kN (synthetic)",
+        "Straight roller R = 5 mm, L = 10 mm on a flat, 5 kN, no crowning, no mirror images: synthetic fields with end peaks for testing the writers",
         steel(Shape::Roller, radius, length),
         force,
         force / length,
