@@ -222,7 +222,13 @@ impl Geometry {
         let overlap = (e1.0.max(e2.0), e1.1.min(e2.1));
         let contact_length = (overlap.1 - overlap.0).max(0.0);
 
-        let ry_of = |b: &Body| if b.shape == Shape::Ball { b.radius_y } else { f64::INFINITY };
+        let ry_of = |b: &Body| {
+            if b.shape == Shape::Ball {
+                b.radius_y
+            } else {
+                f64::INFINITY
+            }
+        };
         let r_y = units::reduced_radius(ry_of(&case.body1), ry_of(&case.body2));
 
         let hertz = if point {
@@ -253,7 +259,11 @@ impl Geometry {
                 let w = case.load.force_per_length;
                 (w, f64::INFINITY, w)
             } else {
-                (case.load.force / contact_length, contact_length, case.load.force)
+                (
+                    case.load.force / contact_length,
+                    contact_length,
+                    case.load.force,
+                )
             };
             HertzScales {
                 point: false,
@@ -275,7 +285,11 @@ impl Geometry {
             shape: b.shape,
             r: b.radius,
             r_y: b.radius_y,
-            len: if b.shape == Shape::Roller { b.length } else { f64::INFINITY },
+            len: if b.shape == Shape::Roller {
+                b.length
+            } else {
+                f64::INFINITY
+            },
             log: match (b.shape, &b.profile) {
                 (Shape::Roller, Profile::Logarithmic { load }) if b.length.is_finite() => {
                     Some(LogProfile::new(*load, b.length, r, e_red))
@@ -313,7 +327,11 @@ impl Geometry {
         let x2 = x * self.cos_s + dy * self.sin_s;
         let u2 = -x * self.sin_s + dy * self.cos_s;
         let z2 = drop_of(&self.b2, &self.p2, x2, u2);
-        let tilt = if self.tan_t != 0.0 { self.tan_t * u2 } else { 0.0 };
+        let tilt = if self.tan_t != 0.0 {
+            self.tan_t * u2
+        } else {
+            0.0
+        };
         z1 + z2 + tilt
     }
 
@@ -406,7 +424,7 @@ impl Geometry {
             _ => return None,
         };
         (bg.shape == Shape::Roller && bg.len.is_finite())
-            .then(|| (centre - 0.5 * bg.len * proj, centre + 0.5 * bg.len * proj))
+            .then_some((centre - 0.5 * bg.len * proj, centre + 0.5 * bg.len * proj))
     }
 
     /// Overlap of the rollers' axial extents along y (m); infinite for an infinite line contact,
@@ -426,7 +444,11 @@ fn drop_of(b: &BodyGeom, profile: &Profile, x: f64, u: f64) -> f64 {
     match b.shape {
         Shape::Flat => 0.0,
         Shape::Ball => {
-            let ry = if b.r_y.is_finite() && b.r_y > 0.0 { b.r_y } else { b.r };
+            let ry = if b.r_y.is_finite() && b.r_y > 0.0 {
+                b.r_y
+            } else {
+                b.r
+            };
             x * x / (2.0 * b.r) + u * u / (2.0 * ry)
         }
         Shape::Roller => {

@@ -132,7 +132,10 @@ fn tilt_adds_a_linear_term_shifted_to_touch() {
     // g(0, y) = tan(t) (y + L/2): zero at the negative end, linear, slope tan(t)
     let t = 0.05f64.tan();
     for &y in &[-2e-3, -1e-3, 0.0, 1.3e-3, 2e-3] {
-        assert!((g.gap(0.0, y) - t * (y + 2e-3)).abs() < 1e-12 * t, "y = {y}");
+        assert!(
+            (g.gap(0.0, y) - t * (y + 2e-3)).abs() < 1e-12 * t,
+            "y = {y}"
+        );
     }
     // linear in y at fixed x: second differences vanish
     let (y0, dy) = (-1e-3, 4e-4);
@@ -212,7 +215,14 @@ fn rounded_edge_and_chamfer_are_continuous_with_known_end_drops() {
     let (l, le) = (0.01, 1e-3);
     let r = 5e-3;
     let g = Geometry::new(&case(
-        roller(0.01, l, Profile::RoundedEdge { edge_length: le, edge_radius: r }),
+        roller(
+            0.01,
+            l,
+            Profile::RoundedEdge {
+                edge_length: le,
+                edge_radius: r,
+            },
+        ),
         flat(),
         5e3,
     ));
@@ -228,7 +238,14 @@ fn rounded_edge_and_chamfer_are_continuous_with_known_end_drops() {
 
     let a = 0.01f64;
     let g = Geometry::new(&case(
-        roller(0.01, l, Profile::Chamfer { edge_length: le, angle: a }),
+        roller(
+            0.01,
+            l,
+            Profile::Chamfer {
+                edge_length: le,
+                angle: a,
+            },
+        ),
         flat(),
         5e3,
     ));
@@ -258,7 +275,11 @@ fn logarithmic_profile_is_lundberg_with_finite_ends() {
     // finite end drop: scale * ln(l / (0.3033 * 2b))
     let b = crate::units::hertz_line_half_width(q / l, r, e);
     let end = scale * (l / (0.3033 * 2.0 * b)).ln();
-    assert!(rel(g.gap(0.0, 0.5 * l), end) < 1e-9, "{} vs {end}", g.gap(0.0, 0.5 * l));
+    assert!(
+        rel(g.gap(0.0, 0.5 * l), end) < 1e-9,
+        "{} vs {end}",
+        g.gap(0.0, 0.5 * l)
+    );
     assert_eq!(g.gap(0.0, 0.0), 0.0);
     assert_eq!(g.gap(0.0, 3e-3), g.gap(0.0, -3e-3));
     // monotone in |u|
@@ -317,7 +338,14 @@ fn combined_misalignment_touches_at_zero() {
     // bounded by the gap's variation over one sample step)
     let mut c = case(
         roller(0.01, 0.01, Profile::Crowned { crown_radius: 0.3 }),
-        roller(0.015, 0.008, Profile::Chamfer { edge_length: 1e-3, angle: 0.02 }),
+        roller(
+            0.015,
+            0.008,
+            Profile::Chamfer {
+                edge_length: 1e-3,
+                angle: 0.02,
+            },
+        ),
         5e3,
     );
     c.body2.axial_offset = 0.7e-3;

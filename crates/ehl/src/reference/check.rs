@@ -77,7 +77,11 @@ pub fn check_report(case: &Case) -> CheckReport {
         dy: grid.dy,
         cells_across_2b: 2.0 * h.b / grid.dx,
         cells_across_y: if grid.ny > 1 {
-            let span = if h.point { 2.0 * h.a_y } else { h.contact_length };
+            let span = if h.point {
+                2.0 * h.a_y
+            } else {
+                h.contact_length
+            };
             Some(span / grid.dy)
         } else {
             None
@@ -135,7 +139,8 @@ pub fn check_report(case: &Case) -> CheckReport {
 }
 
 fn row(f: &mut fmt::Formatter<'_>, label: &str, value: String, unit: &str) -> fmt::Result {
-    writeln!(f, "  {label:<38} {value:>14}  {unit}")
+    let line = format!("  {label:<38} {value:>14}  {unit}");
+    writeln!(f, "{}", line.trim_end())
 }
 
 fn sci(v: f64) -> String {
@@ -193,23 +198,34 @@ impl fmt::Display for CheckReport {
         }
         row(f, "max Hertz pressure p_h", fixed(h.ph / 1e9, 4), "GPa")?;
         writeln!(f, "dimensionless groups (u_e = mean speed)")?;
-        let wdef = if h.point { "W = F/(E' R^2)" } else { "W = w'/(E' R)" };
+        let wdef = if h.point {
+            "W = F/(E' R^2)"
+        } else {
+            "W = w'/(E' R)"
+        };
         row(f, wdef, sci(self.w), "")?;
         if let (Some(u), Some(g)) = (self.u, self.g) {
             row(f, "U = eta0 u_e/(E' R)", sci(u), "")?;
             row(f, "G = alpha E'", fixed(g, 1), "")?;
         }
         if let Some((m, l)) = self.moes {
-            let mdef = if h.point { "Moes M = W (2U)^-3/4" } else { "Moes M = W (2U)^-1/2" };
+            let mdef = if h.point {
+                "Moes M = W (2U)^-3/4"
+            } else {
+                "Moes M = W (2U)^-1/2"
+            };
             row(f, mdef, fixed(m, 3), "")?;
             row(f, "Moes L = G (2U)^1/4", fixed(l, 3), "")?;
         }
         if !self.films.is_empty() {
-            writeln!(f, "classical film estimates (isothermal, Newtonian, smooth)")?;
             writeln!(
                 f,
-                "  {:<26} {:>12} {:>12}  {:<28} {}",
-                "formula", "central nm", "minimum nm", "fitted with", "case uses same laws"
+                "classical film estimates (isothermal, Newtonian, smooth)"
+            )?;
+            writeln!(
+                f,
+                "  {:<26} {:>12} {:>12}  {:<28} case uses same laws",
+                "formula", "central nm", "minimum nm", "fitted with"
             )?;
             for e in &self.films {
                 let nm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{:.1}", v * 1e9));
@@ -228,7 +244,10 @@ impl fmt::Display for CheckReport {
                 row(f, "Pan-Hamrock spike position x", fixed(x * 1e6, 2), "um")?;
             }
             if !h.point && h.contact_length.is_finite() {
-                writeln!(f, "  (line-contact formulas: estimates for the roller's mid-length)")?;
+                writeln!(
+                    f,
+                    "  (line-contact formulas: estimates for the roller's mid-length)"
+                )?;
             }
         }
         writeln!(f, "grid")?;
@@ -239,7 +258,11 @@ impl fmt::Display for CheckReport {
         }
         row(f, "cells across 2b (x)", fixed(self.cells_across_2b, 1), "")?;
         if let Some(c) = self.cells_across_y {
-            let lab = if h.point { "cells across 2a_y (y)" } else { "cells across contact length (y)" };
+            let lab = if h.point {
+                "cells across 2a_y (y)"
+            } else {
+                "cells across contact length (y)"
+            };
             row(f, lab, fixed(c, 1), "")?;
         }
         Ok(())
@@ -270,8 +293,14 @@ mod tests {
             body1: body.clone(),
             body2: body,
             alignment: Alignment::default(),
-            load: Load { force: 6000.0, force_per_length: 6000.0 / 9.5e-3 },
-            motion: Some(Motion { entrainment_speed: 2.7, slide_to_roll: 0.0 }),
+            load: Load {
+                force: 6000.0,
+                force_per_length: 6000.0 / 9.5e-3,
+            },
+            motion: Some(Motion {
+                entrainment_speed: 2.7,
+                slide_to_roll: 0.0,
+            }),
             lubricant: Some(Lubricant {
                 viscosity: 0.04,
                 pressure_viscosity_coefficient: 15.9e-9,
@@ -280,7 +309,14 @@ mod tests {
                 density_model: DensityModel::DowsonHigginson,
                 rheology: Rheology::Newtonian,
             }),
-            grid: GridSpec { nx: 256, ny: 512, x_min: -4.0, x_max: 1.5, y_min: -20.0, y_max: 20.0 },
+            grid: GridSpec {
+                nx: 256,
+                ny: 512,
+                x_min: -4.0,
+                x_max: 1.5,
+                y_min: -20.0,
+                y_max: 20.0,
+            },
             solver: SolverSpec {
                 tolerance: 1e-6,
                 max_iterations: 200,
@@ -320,7 +356,15 @@ mod tests {
         assert!(ph.central.unwrap() > ph.minimum.unwrap());
         assert!(ph.minimum.unwrap() > 50e-9 && ph.central.unwrap() < 2e-6);
         let text = r.to_string();
-        for needle in ["E'", "Moes M", "Pan-Hamrock", "cells across 2b", "GPa", "dy"] {
+        eprintln!("{text}");
+        for needle in [
+            "E'",
+            "Moes M",
+            "Pan-Hamrock",
+            "cells across 2b",
+            "GPa",
+            "dy",
+        ] {
             assert!(text.contains(needle), "missing {needle} in\n{text}");
         }
     }
@@ -345,7 +389,14 @@ mod tests {
             ..c.body2.clone()
         };
         c.load.force = 15.0;
-        c.grid = GridSpec { nx: 128, ny: 128, x_min: -3.0, x_max: 3.0, y_min: -3.0, y_max: 3.0 };
+        c.grid = GridSpec {
+            nx: 128,
+            ny: 128,
+            x_min: -3.0,
+            x_max: 3.0,
+            y_min: -3.0,
+            y_max: 3.0,
+        };
         let r = check_report(&c);
         assert!(r.films.is_empty() && r.u.is_none());
         assert!((r.cells_across_2b - 128.0 / 3.0).abs() < 1e-9);

@@ -43,7 +43,7 @@ pub fn moes_point_groups(w: f64, u: f64, g: f64) -> (f64, f64) {
 }
 
 /// The four asymptotes of the Moes line-contact central film (dimensionless H), Venner &
-/// Lubrecht (2000) eq. 4.?: rigid-isoviscous H_RI = 3 M^-1, elastic-isoviscous
+/// Lubrecht (2000) ch. 4: rigid-isoviscous H_RI = 3 M^-1, elastic-isoviscous
 /// H_EI = 2.621 M^-1/5, rigid-piezoviscous H_RP = 1.287 L^2/3, elastic-piezoviscous
 /// H_EP = 1.311 M^-1/8 L^3/4. Returns (H_RI, H_EI, H_RP, H_EP).
 pub fn moes_line_asymptotes(m: f64, l: f64) -> (f64, f64, f64, f64) {
@@ -204,7 +204,11 @@ mod tests {
                 assert!(x > 0.5 * b && x < 1.05 * b, "W={w} U={u}: x/b = {}", x / b);
                 let ph = (w / (2.0 * std::f64::consts::PI)).sqrt();
                 let p = pan_hamrock_spike_pressure(w, u, g);
-                assert!(p > 0.1 * ph && p < 3.0 * ph, "W={w} U={u}: p/ph = {}", p / ph);
+                assert!(
+                    p > 0.1 * ph && p < 3.0 * ph,
+                    "W={w} U={u}: p/ph = {}",
+                    p / ph
+                );
             }
         }
     }

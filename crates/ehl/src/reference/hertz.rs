@@ -82,7 +82,11 @@ pub fn hertz_elliptical(f: f64, rx: f64, ry: f64, e_red: f64) -> HertzEllipse {
         return nan;
     }
     let e_star = 0.5 * e_red;
-    let (r_major, r_minor, major_is_y) = if ry >= rx { (ry, rx, true) } else { (rx, ry, false) };
+    let (r_major, r_minor, major_is_y) = if ry >= rx {
+        (ry, rx, true)
+    } else {
+        (rx, ry, false)
+    };
     let ratio = r_major / r_minor; // B/A >= 1
     let m = if ratio - 1.0 < 1e-12 {
         0.0
@@ -95,7 +99,7 @@ pub fn hertz_elliptical(f: f64, rx: f64, ry: f64, e_red: f64) -> HertzEllipse {
             (e / (q * q) - k) / (k - e) - ratio
         };
         let (mut lo, mut hi) = ((1e-12f64).ln(), (1.0f64 - 1e-9).ln()); // ln q
-        // g decreases as q grows (q = 1 is the circle)
+                                                                        // g decreases as q grows (q = 1 is the circle)
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
             if g(mid.exp()) > 0.0 {
@@ -200,10 +204,18 @@ mod tests {
             let ay = (6.0 * k * k * ee * f * r / (PI * e_red)).cbrt();
             let ax = (6.0 * ee * f * r / (PI * k * e_red)).cbrt();
             let delta = ff * (9.0 / (2.0 * ee * r) * (f / (PI * k * e_red)).powi(2)).cbrt();
-            assert!((h.ellipticity / k - 1.0).abs() < 0.05, "k at {alpha}: {} vs {k}", h.ellipticity);
+            assert!(
+                (h.ellipticity / k - 1.0).abs() < 0.05,
+                "k at {alpha}: {} vs {k}",
+                h.ellipticity
+            );
             assert!((h.a_y / ay - 1.0).abs() < 0.05, "a_y at {alpha}");
             assert!((h.a_x / ax - 1.0).abs() < 0.05, "a_x at {alpha}");
-            assert!((h.approach / delta - 1.0).abs() < 0.05, "delta at {alpha}: {} vs {delta}", h.approach);
+            assert!(
+                (h.approach / delta - 1.0).abs() < 0.05,
+                "delta at {alpha}: {} vs {delta}",
+                h.approach
+            );
             // load balance of the Hertz ellipse
             assert!((2.0 / 3.0 * PI * h.p0 * h.a_x * h.a_y / f - 1.0).abs() < 1e-12);
         }
