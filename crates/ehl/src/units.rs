@@ -81,15 +81,18 @@ pub fn point_load_parameter(f: f64, e_red: f64, r: f64) -> f64 {
     f / (e_red * r * r)
 }
 
-/// Moes line-contact groups (Moes 1992; Venner & Lubrecht 2000 eq. 4.1):
-/// M = W U^(-1/2), L = G U^(1/4).
+/// Moes line-contact groups (Moes 1992; Venner & Lubrecht 2000 ch. 4) from the mean-speed
+/// groups W, U, G of this module: M = W (2U)^(-1/2), L = G (2U)^(1/4). Moes' speed group is
+/// built on the sum speed u1 + u2 = 2 u_e, hence the 2.
 pub fn moes_line(w: f64, u: f64, g: f64) -> (f64, f64) {
-    (w / u.sqrt(), g * u.powf(0.25))
+    let u2 = 2.0 * u;
+    (w / u2.sqrt(), g * u2.powf(0.25))
 }
 
-/// Moes point-contact groups: M = W U^(-3/4), L = G U^(1/4).
+/// Moes point-contact groups: M = W (2U)^(-3/4), L = G (2U)^(1/4) (W = F/(E' R_x^2)).
 pub fn moes_point(w: f64, u: f64, g: f64) -> (f64, f64) {
-    (w * u.powf(-0.75), g * u.powf(0.25))
+    let u2 = 2.0 * u;
+    (w * u2.powf(-0.75), g * u2.powf(0.25))
 }
 
 #[cfg(test)]

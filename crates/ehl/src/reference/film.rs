@@ -8,8 +8,7 @@
 //! * line contact W = w' / (E' R) (w' load per unit length); point contact W = F / (E' R_x^2),
 //! * Moes line groups (Venner & Lubrecht 2000, ch. 4): M = W (2U)^(-1/2), L = G (2U)^(1/4),
 //!   H = (h/R) (2U)^(-1/2). The factor 2 makes 2U = eta0 (u1 + u2)/(E' R), Moes' sum-speed
-//!   group. Note: [`crate::units::moes_line`] returns W U^(-1/2), G U^(1/4) (without the 2);
-//!   use [`moes_line_groups`] with [`moes_line_central`].
+//!   group; [`moes_line_groups`] is [`crate::units::moes_line`], the one definition.
 //!
 //! Every function returns a film thickness divided by R (or a pressure divided by E', or a
 //! position divided by R): multiply by R (E') to get metres (pascals).
@@ -31,15 +30,13 @@
 
 /// Moes line-contact groups from the mean-speed groups: M = W (2U)^(-1/2), L = G (2U)^(1/4).
 pub fn moes_line_groups(w: f64, u: f64, g: f64) -> (f64, f64) {
-    let u2 = 2.0 * u;
-    (w / u2.sqrt(), g * u2.powf(0.25))
+    crate::units::moes_line(w, u, g)
 }
 
 /// Moes point-contact groups from the mean-speed groups: M = W (2U)^(-3/4), L = G (2U)^(1/4)
 /// (W = F/(E' R_x^2)).
 pub fn moes_point_groups(w: f64, u: f64, g: f64) -> (f64, f64) {
-    let u2 = 2.0 * u;
-    (w * u2.powf(-0.75), g * u2.powf(0.25))
+    crate::units::moes_point(w, u, g)
 }
 
 /// The four asymptotes of the Moes line-contact central film (dimensionless H), Venner &
