@@ -9,25 +9,6 @@ use ehl::units;
 
 const E_RED: f64 = 2.2e11;
 
-#[test]
-fn support_fft_operator_equals_dense_sum() {
-    // The stand-in FFT operator must equal the direct sum to rounding (1e-12 relative to the
-    // largest deflection: the FFT's error is ~1e-16 log N times the sum of |terms|).
-    for &(nx, ny) in &[(7, 5), (8, 8), (12, 1), (9, 16)] {
-        let g = Grid::new(nx, ny, -1e-3, 2e-3, -0.5e-3, 0.5e-3);
-        let mut dense = if ny == 1 { DenseDeflection::line(g, E_RED) } else { DenseDeflection::new(g, E_RED) };
-        let mut fft = dry_support::FftOp::new(dense.clone());
-        let p: Vec<f64> = (0..g.len()).map(|k| 1e9 * (((k * 7919) % 101) as f64 / 101.0)).collect();
-        let (mut a, mut b) = (vec![0.0; g.len()], vec![0.0; g.len()]);
-        dense.apply(&p, &mut a);
-        fft.apply(&p, &mut b);
-        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for k in 0..g.len() {
-            assert!((a[k] - b[k]).abs() < 1e-12 * scale, "{nx}x{ny} cell {k}: {} vs {}", a[k], b[k]);
-        }
-    }
-}
-
 /// Ball on flat, square grid centred on the contact.
 fn ball(n: usize, half_domain_in_a: f64, params: &DryParams) -> (Grid, ehl::dry::DryResult, units::HertzPoint) {
     let (r, f) = (0.01, 100.0);
