@@ -20,27 +20,47 @@ fn ball(c: &mut Criterion) {
     let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
     let op = move |g: Grid| Box::new(FftDeflection::half_space(g, e_red)) as Box<dyn Deflection>;
     let mut group = c.benchmark_group("dry");
-    group.sample_size(10).measurement_time(Duration::from_secs(10));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(10));
     for &n in &[512usize, 1024] {
         let l = 1.5 * hz.a;
         let grid = Grid::new(n, n, -l, l, -l, l);
-        let problem = DryProblem { grid, gap: &gap, operator: &op, load: f };
+        let problem = DryProblem {
+            grid,
+            gap: &gap,
+            operator: &op,
+            load: f,
+        };
         let params = DryParams::default();
         let res = solve(&problem, &params);
         eprintln!(
             "ball {n}^2: converged {}, residual {:.2e}, fine iterations {}, total {}, applications {}",
             res.converged, res.residual, res.iterations, res.total_iterations, res.applications
         );
-        group.bench_function(format!("ball_on_flat_{n}x{n}"), |b| b.iter(|| solve(&problem, &params)));
+        group.bench_function(format!("ball_on_flat_{n}x{n}"), |b| {
+            b.iter(|| solve(&problem, &params))
+        });
     }
     let (e, nu) = (2.1e11, 0.3);
     let e_red = units::reduced_modulus(e, nu, e, nu);
     let (r, len, f) = (0.005, 0.010, 5000.0);
     let bw = units::hertz_line_half_width(f / len, r, e_red);
-    let gap = move |x: f64, y: f64| if y.abs() <= 0.5 * len { x * x / (2.0 * r) } else { f64::INFINITY };
+    let gap = move |x: f64, y: f64| {
+        if y.abs() <= 0.5 * len {
+            x * x / (2.0 * r)
+        } else {
+            f64::INFINITY
+        }
+    };
     let op = move |g: Grid| Box::new(FftDeflection::half_space(g, e_red)) as Box<dyn Deflection>;
     let grid = Grid::new(256, 2048, -1.5 * bw, 1.5 * bw, -0.55 * len, 0.55 * len);
-    let problem = DryProblem { grid, gap: &gap, operator: &op, load: f };
+    let problem = DryProblem {
+        grid,
+        gap: &gap,
+        operator: &op,
+        load: f,
+    };
     let params = DryParams::default();
     let res = solve(&problem, &params);
     eprintln!(

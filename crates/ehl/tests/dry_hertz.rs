@@ -10,14 +10,26 @@ use ehl::units;
 const E_RED: f64 = 2.2e11;
 
 /// Ball on flat, square grid centred on the contact.
-fn ball(n: usize, half_domain_in_a: f64, params: &DryParams) -> (Grid, ehl::dry::DryResult, units::HertzPoint) {
+fn ball(
+    n: usize,
+    half_domain_in_a: f64,
+    params: &DryParams,
+) -> (Grid, ehl::dry::DryResult, units::HertzPoint) {
     let (r, f) = (0.01, 100.0);
     let hz = units::hertz_point(f, r, E_RED);
     let l = half_domain_in_a * hz.a;
     let grid = Grid::new(n, n, -l, l, -l, l);
     let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
     let op = dry_support::half_space(E_RED);
-    let res = solve(&DryProblem { grid, gap: &gap, operator: &op, load: f }, params);
+    let res = solve(
+        &DryProblem {
+            grid,
+            gap: &gap,
+            operator: &op,
+            load: f,
+        },
+        params,
+    );
     (grid, res, hz)
 }
 
@@ -70,7 +82,10 @@ fn ball_on_flat_is_symmetric() {
             }
         }
     }
-    println!("ball 96^2 symmetry: max |p - p_mirror| / p0 = {:.2e}", worst / p0);
+    println!(
+        "ball 96^2 symmetry: max |p - p_mirror| / p0 = {:.2e}",
+        worst / p0
+    );
     assert!(worst < 1e-8 * p0, "asymmetry {:.3e} of p0", worst / p0);
 }
 
@@ -106,7 +121,15 @@ fn line_contact_matches_hertz() {
     for &cells_per_b in &[50usize, 100, 200] {
         let nx = 3 * cells_per_b; // domain [-1.5 b, 1.5 b]
         let grid = Grid::new(nx, 1, -1.5 * b, 1.5 * b, -0.5, 0.5);
-        let res = solve(&DryProblem { grid, gap: &gap, operator: &op, load: w }, &DryParams::default());
+        let res = solve(
+            &DryProblem {
+                grid,
+                gap: &gap,
+                operator: &op,
+                load: w,
+            },
+            &DryParams::default(),
+        );
         assert!(res.converged, "{}", res.termination);
         let e_p = res.max_pressure() / ph - 1.0;
         let e_b = half_width(&grid.xs(), &res.pressure) / b - 1.0;
@@ -128,26 +151,99 @@ fn odd_input_gives_reasons_not_panics() {
     let op = |g: Grid| Box::new(DenseDeflection::new(g, E_RED)) as Box<dyn Deflection>;
     let params = DryParams::default();
     for load in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        let r = solve(&DryProblem { grid: g, gap: &gap, operator: &op, load }, &params);
+        let r = solve(
+            &DryProblem {
+                grid: g,
+                gap: &gap,
+                operator: &op,
+                load,
+            },
+            &params,
+        );
         assert!(!r.converged);
         assert!(r.termination.contains("load"), "{}", r.termination);
     }
     let nowhere = |_: f64, _: f64| f64::INFINITY;
-    let r = solve(&DryProblem { grid: g, gap: &nowhere, operator: &op, load: 1.0 }, &params);
-    assert!(!r.converged && r.termination.contains("no cell"), "{}", r.termination);
+    let r = solve(
+        &DryProblem {
+            grid: g,
+            gap: &nowhere,
+            operator: &op,
+            load: 1.0,
+        },
+        &params,
+    );
+    assert!(
+        !r.converged && r.termination.contains("no cell"),
+        "{}",
+        r.termination
+    );
     let nan = |x: f64, _: f64| if x > 0.0 { f64::NAN } else { 0.0 };
-    let r = solve(&DryProblem { grid: g, gap: &nan, operator: &op, load: 1.0 }, &params);
-    assert!(!r.converged && r.termination.contains("NaN"), "{}", r.termination);
-    let wrong = |_: Grid| Box::new(DenseDeflection::new(Grid::new(3, 3, 0.0, 1.0, 0.0, 1.0), E_RED)) as Box<dyn Deflection>;
-    let r = solve(&DryProblem { grid: g, gap: &gap, operator: &wrong, load: 1.0 }, &params);
-    assert!(!r.converged && r.termination.contains("operator"), "{}", r.termination);
+    let r = solve(
+        &DryProblem {
+            grid: g,
+            gap: &nan,
+            operator: &op,
+            load: 1.0,
+        },
+        &params,
+    );
+    assert!(
+        !r.converged && r.termination.contains("NaN"),
+        "{}",
+        r.termination
+    );
+    let wrong = |_: Grid| {
+        Box::new(DenseDeflection::new(
+            Grid::new(3, 3, 0.0, 1.0, 0.0, 1.0),
+            E_RED,
+        )) as Box<dyn Deflection>
+    };
+    let r = solve(
+        &DryProblem {
+            grid: g,
+            gap: &gap,
+            operator: &wrong,
+            load: 1.0,
+        },
+        &params,
+    );
+    assert!(
+        !r.converged && r.termination.contains("operator"),
+        "{}",
+        r.termination
+    );
     // too few iterations: reported, not hidden
-    let few = DryParams { max_iterations: 2, coarse_start: false, ..DryParams::default() };
-    let r = solve(&DryProblem { grid: g, gap: &gap, operator: &op, load: 1.0 }, &few);
-    assert!(!r.converged && r.termination.contains("no convergence"), "{}", r.termination);
+    let few = DryParams {
+        max_iterations: 2,
+        coarse_start: false,
+        ..DryParams::default()
+    };
+    let r = solve(
+        &DryProblem {
+            grid: g,
+            gap: &gap,
+            operator: &op,
+            load: 1.0,
+        },
+        &few,
+    );
+    assert!(
+        !r.converged && r.termination.contains("no convergence"),
+        "{}",
+        r.termination
+    );
     // a flat punch (constant gap) still solves: the whole domain in contact
     let flat = |_: f64, _: f64| 0.0;
-    let r = solve(&DryProblem { grid: g, gap: &flat, operator: &op, load: 1.0 }, &params);
+    let r = solve(
+        &DryProblem {
+            grid: g,
+            gap: &flat,
+            operator: &op,
+            load: 1.0,
+        },
+        &params,
+    );
     assert!(r.converged, "{}", r.termination);
     assert!((r.load - 1.0).abs() < 1e-8);
 }

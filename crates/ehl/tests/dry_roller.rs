@@ -17,20 +17,38 @@ fn long_roller_mid_length_matches_hertz_line_contact_and_converges_with_grid() {
     // to terms of order b/L, and the piecewise-constant discretisation errs by O(dx/b).
     let (r, len, f) = (0.005, 0.010, 2000.0);
     let b_nom = units::hertz_line_half_width(f / len, r, E_RED);
-    let gap = move |x: f64, y: f64| if y.abs() <= 0.5 * len { x * x / (2.0 * r) } else { f64::INFINITY };
+    let gap = move |x: f64, y: f64| {
+        if y.abs() <= 0.5 * len {
+            x * x / (2.0 * r)
+        } else {
+            f64::INFINITY
+        }
+    };
     let op = dry_support::half_space(E_RED);
     let mut errors = Vec::new();
     for &(nx, ny) in &[(32usize, 104usize), (64, 208), (128, 416)] {
         let xl = 1.6 * b_nom;
         let yl = 0.52 * len;
         let grid = Grid::new(nx, ny, -xl, xl, -yl, yl);
-        let res = solve(&DryProblem { grid, gap: &gap, operator: &op, load: f }, &DryParams::default());
+        let res = solve(
+            &DryProblem {
+                grid,
+                gap: &gap,
+                operator: &op,
+                load: f,
+            },
+            &DryParams::default(),
+        );
         assert!(res.converged, "{}", res.termination);
         assert!((res.load / f - 1.0).abs() < 1e-8);
         // mid-length: the two rows either side of y = 0 (ny even), averaged
         let j = ny / 2;
         let row = |j: usize| &res.pressure[j * nx..(j + 1) * nx];
-        let mid: Vec<f64> = row(j - 1).iter().zip(row(j)).map(|(a, b)| 0.5 * (a + b)).collect();
+        let mid: Vec<f64> = row(j - 1)
+            .iter()
+            .zip(row(j))
+            .map(|(a, b)| 0.5 * (a + b))
+            .collect();
         let w_mid: f64 = mid.iter().sum::<f64>() * grid.dx;
         let ph = units::hertz_line_pressure(w_mid, r, E_RED);
         let b = units::hertz_line_half_width(w_mid, r, E_RED);
@@ -79,7 +97,13 @@ fn end_peak_with_mirror_images_and_psi_is_lower_and_stops_growing() {
     let (r, len, f, e, nu) = (0.005, 0.004, 30_000.0, 2.0e11, 0.3); // R = reduced radius
     let e_red = units::reduced_modulus(e, nu, e, nu);
     let b = units::hertz_line_half_width(f / len, r, e_red);
-    let gap = move |x: f64, y: f64| if y.abs() <= 0.5 * len { x * x / (2.0 * r) } else { f64::INFINITY };
+    let gap = move |x: f64, y: f64| {
+        if y.abs() <= 0.5 * len {
+            x * x / (2.0 * r)
+        } else {
+            f64::INFINITY
+        }
+    };
     let psi = ehl::elastic::operator::guilbault_psi(nu);
     let plain = dry_support::half_space(e_red);
     let mirrored = dry_support::rollers(e, nu, (-0.5 * len, 0.5 * len), 1, psi, true);
@@ -88,8 +112,19 @@ fn end_peak_with_mirror_images_and_psi_is_lower_and_stops_growing() {
         // y exactly on the roller: the end sits on the domain edge, cells of length L / ny
         let grid = Grid::new(nx, ny, -1.6 * b, 1.6 * b, -0.5 * len, 0.5 * len);
         let mut row = Vec::new();
-        for op in [&plain as &(dyn Fn(Grid) -> Box<dyn ehl::elastic::Deflection> + Sync), &mirrored] {
-            let res = solve(&DryProblem { grid, gap: &gap, operator: op, load: f }, &DryParams::default());
+        for op in [
+            &plain as &(dyn Fn(Grid) -> Box<dyn ehl::elastic::Deflection> + Sync),
+            &mirrored,
+        ] {
+            let res = solve(
+                &DryProblem {
+                    grid,
+                    gap: &gap,
+                    operator: op,
+                    load: f,
+                },
+                &DryParams::default(),
+            );
             assert!(res.converged, "{}", res.termination);
             row.push(res.max_pressure());
         }
@@ -101,9 +136,15 @@ fn end_peak_with_mirror_images_and_psi_is_lower_and_stops_growing() {
         peaks.push(row);
     }
     for k in 1..3 {
-        assert!(peaks[k][0] > 1.05 * peaks[k - 1][0], "plain peak should keep growing: {peaks:?}");
+        assert!(
+            peaks[k][0] > 1.05 * peaks[k - 1][0],
+            "plain peak should keep growing: {peaks:?}"
+        );
     }
     let growth_plain = peaks[2][0] / peaks[1][0] - 1.0;
     let growth_mirror = (peaks[2][1] / peaks[1][1] - 1.0).abs();
-    assert!(growth_mirror < 0.01 && growth_mirror < 0.5 * growth_plain, "{peaks:?}");
+    assert!(
+        growth_mirror < 0.01 && growth_mirror < 0.5 * growth_plain,
+        "{peaks:?}"
+    );
 }

@@ -221,7 +221,10 @@ pub fn solve(problem: &DryProblem, params: &DryParams) -> DryResult {
             );
         }
         if !gap.iter().any(|v| v.is_finite()) {
-            return DryResult::failed(&grid, "no cell can carry load: the gap is infinite everywhere".into());
+            return DryResult::failed(
+                &grid,
+                "no cell can carry load: the gap is infinite everywhere".into(),
+            );
         }
         let mut op = (problem.operator)(*g);
         if op.grid().nx != g.nx || op.grid().ny != g.ny {
@@ -237,7 +240,11 @@ pub fn solve(problem: &DryProblem, params: &DryParams) -> DryResult {
             );
         }
         let start = pressure.as_ref().map(|(cg, cp)| interpolate(cg, cp, g));
-        let tol = if fine { params.tolerance } else { params.coarse_tolerance.max(params.tolerance) };
+        let tol = if fine {
+            params.tolerance
+        } else {
+            params.coarse_tolerance.max(params.tolerance)
+        };
         let r = solve_level(g, &gap, op.as_mut(), problem.load, start, tol, params);
         total_iterations += r.iterations;
         applications += r.applications;
@@ -252,7 +259,13 @@ pub fn solve(problem: &DryProblem, params: &DryParams) -> DryResult {
             let h: Vec<f64> = gap
                 .iter()
                 .zip(&r.u)
-                .map(|(gi, ui)| if gi.is_finite() { gi + ui - r.approach } else { f64::INFINITY })
+                .map(|(gi, ui)| {
+                    if gi.is_finite() {
+                        gi + ui - r.approach
+                    } else {
+                        f64::INFINITY
+                    }
+                })
                 .collect();
             let area = g.cell_area();
             let contact = r.p.iter().filter(|&&v| v > 0.0).count() as f64 * area;
@@ -306,7 +319,9 @@ fn interpolate(cg: &Grid, cp: &[f64], fg: &Grid) -> Vec<f64> {
         (i, i + 1, s - i as f64)
     };
     let mut out = vec![0.0; fg.len()];
-    let xs: Vec<_> = (0..fg.nx).map(|i| pos(fg.x(i), cg.x_min, cg.dx, cg.nx)).collect();
+    let xs: Vec<_> = (0..fg.nx)
+        .map(|i| pos(fg.x(i), cg.x_min, cg.dx, cg.nx))
+        .collect();
     for j in 0..fg.ny {
         let (j0, j1, wy) = pos(fg.y(j), cg.y_min, cg.dy, cg.ny);
         for (i, &(i0, i1, wx)) in xs.iter().enumerate() {
@@ -356,7 +371,9 @@ fn solve_level(
     }
     let mut sum: f64 = p.iter().sum();
     if !(sum > 0.0) {
-        p.iter_mut().zip(&finite).for_each(|(v, &f)| *v = if f { 1.0 } else { 0.0 });
+        p.iter_mut()
+            .zip(&finite)
+            .for_each(|(v, &f)| *v = if f { 1.0 } else { 0.0 });
         sum = n_finite as f64;
     }
     let s = load / (sum * area);
@@ -546,7 +563,8 @@ fn solve_level(
         since_refresh += 1;
         fresh = false;
         if (corr > 0.0 && dropped >= params.correction_fraction * stepped)
-            || since_refresh >= params.refresh_interval {
+            || since_refresh >= params.refresh_interval
+        {
             op.apply(&p, &mut u);
             applications += 1;
             fresh = true;

@@ -32,7 +32,11 @@ pub fn rollers(
         if levels > 0 {
             roller.images = Some(EndImages { ends, levels, psi });
         }
-        let flat = if two_rollers { roller } else { BodyCompliance::new(e, nu) };
+        let flat = if two_rollers {
+            roller
+        } else {
+            BodyCompliance::new(e, nu)
+        };
         Box::new(FftDeflection::with_images(g, &[roller, flat])) as Box<dyn Deflection>
     }
 }
