@@ -1,7 +1,6 @@
-//! `ehl run` and `ehl sweep` end to end. The tests that need the solver and the writers are
-//! ignored until integration; the sweep bookkeeping (rerun skips finished points, sweep.csv is
-//! rebuilt from every finished folder so shards combine) is checked now with point folders that
-//! already hold a summary.json.
+//! `ehl run` and `ehl sweep` end to end: a solved run, a non-converged run (exit 3, outputs and
+//! `converged = false` still written), sweeps with shards, and the sweep bookkeeping (rerun skips
+//! finished points, sweep.csv is rebuilt from every finished folder so shards combine).
 
 mod common;
 use common::*;
@@ -95,7 +94,6 @@ fn sweep_skips_finished_points_and_rebuilds_the_csv() {
 }
 
 #[test]
-#[ignore = "needs solver; enabled at integration"]
 fn run_writes_outputs_and_exits_0() {
     let w = Work::new(DRY);
     let o = w.ehl(&["run", "case.toml", "--quiet"]);
@@ -127,7 +125,6 @@ fn run_writes_outputs_and_exits_0() {
 }
 
 #[test]
-#[ignore = "needs solver; enabled at integration"]
 fn run_not_converged_exits_3_with_outputs() {
     let w = Work::new(DRY);
     let o = w.ehl(&[
@@ -149,7 +146,6 @@ fn run_not_converged_exits_3_with_outputs() {
 }
 
 #[test]
-#[ignore = "needs solver; enabled at integration"]
 fn sweep_solves_every_point_and_shards_combine() {
     let w = Work::new(DRY);
     let sweep = |shard: &str| {

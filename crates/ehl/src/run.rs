@@ -1,9 +1,14 @@
 //! From a validated case to a solution: builds the grid, the gap and the operators, dispatches to
 //! the dry or EHL solver and fills the summary. No file I/O here.
 
-use crate::case::Case;
-use crate::solution::Solution;
+use crate::case::{Case, Kind, Shape};
+use crate::dry::{DryParams, DryProblem};
+use crate::elastic::{guilbault_psi, BodyCompliance, Deflection, EndImages, FftDeflection};
+use crate::geometry::Geometry;
+use crate::grid::Grid;
+use crate::solution::{Fields, Solution, Summary};
 use crate::{Error, Result};
+use std::time::Instant;
 
 /// Receives progress reports from long solves: a fraction in [0, 1] (or NaN if unknown) and a
 /// short message. The CLI turns these into a progress bar; the library never prints.
@@ -18,11 +23,118 @@ impl Progress for Silent {
     fn report(&self, _fraction: f64, _message: &str) {}
 }
 
+/// The elastic operator factory for a case: the plane-strain strip kernel for an infinite line
+/// contact, else the half-space with, for each finite roller, the mirror images about its free
+/// ends (`solver.mirror_levels`) carrying Guilbault's psi of that body's Poisson ratio when
+/// `solver.free_end_correction` is set.
+pub fn operator_factory(case: &Case, geometry: &Geometry) -> impl Fn(Grid) -> Box<dyn Deflection> + Sync {
+    let e_red = case.reduced_modulus();
+    let line = case.is_infinite_line();
+    let mut bodies = Vec::new();
+    for (k, body) in [(1usize, &case.body1), (2, &case.body2)] {
+        let mut b = BodyCompliance::new(body.youngs_modulus, body.poisson_ratio);
+        if body.shape == Shape::Roller && case.solver.mirror_levels > 0 {
+            if let Some(ends) = geometry.body_ends(k) {
+                b.images = Some(EndImages {
+                    ends,
+                    levels: case.solver.mirror_levels,
+                    psi: if case.solver.free_end_correction {
+                        guilbault_psi(body.poisson_ratio)
+                    } else {
+                        1.0
+                    },
+                });
+            }
+        }
+        bodies.push(b);
+    }
+    move |grid: Grid| -> Box<dyn Deflection> {
+        if line {
+            Box::new(FftDeflection::line(grid, e_red))
+        } else {
+            Box::new(FftDeflection::with_images(grid, &bodies))
+        }
+    }
+}
+
+/// Index and value of the largest entry.
+fn argmax(v: &[f64]) -> (usize, f64) {
+    v.iter()
+        .enumerate()
+        .fold((0, f64::NEG_INFINITY), |(k, m), (i, &x)| if x > m { (i, x) } else { (k, m) })
+}
+
 /// Solves `case`. A solver that does not converge still returns a solution with
 /// `summary.converged == false`; errors are reserved for cases that cannot be solved at all.
 pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
-    let _ = (case, progress);
-    Err(Error::Solver("not built yet".into()))
+    let start = Instant::now();
+    let geometry = Geometry::new(case);
+    let grid = geometry.grid();
+    let hertz = geometry.hertz();
+    let factory = operator_factory(case, &geometry);
+    let gap = |x: f64, y: f64| geometry.gap(x, y);
+    let load = if case.is_infinite_line() {
+        case.load.force_per_length
+    } else {
+        case.load.force
+    };
+    progress.report(0.0, "dry contact");
+    let dry = crate::dry::solve(
+        &DryProblem {
+            grid,
+            gap: &gap,
+            operator: &factory,
+            load,
+        },
+        &DryParams {
+            tolerance: if case.kind == Kind::Dry {
+                case.solver.tolerance
+            } else {
+                case.solver.tolerance.max(1e-8)
+            },
+            max_iterations: case.solver.max_iterations,
+            ..DryParams::default()
+        },
+    );
+    let mut summary = Summary {
+        hertz_pressure_pa: hertz.ph,
+        hertz_half_width_m: hertz.b,
+        ..Summary::default()
+    };
+    let solution = match case.kind {
+        Kind::Dry => {
+            summary.converged = dry.converged;
+            summary.termination = dry.termination.clone();
+            summary.iterations = dry.total_iterations;
+            summary.residual = dry.residual;
+            summary.load_n = dry.load;
+            summary.load_error = (dry.load - load).abs() / load;
+            summary.approach_m = dry.approach.is_finite().then_some(dry.approach);
+            summary.contact_area_m2 = Some(dry.contact_area);
+            let (k, pmax) = argmax(&dry.pressure);
+            summary.max_pressure_pa = pmax;
+            summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
+            Solution {
+                grid,
+                fields: Fields {
+                    pressure: dry.pressure,
+                    deformation: dry.deflection,
+                    // a failed solve has no loaded gap: leave it out rather than write NaN
+                    film: dry.gap.iter().all(|v| !v.is_nan()).then_some(dry.gap),
+                    viscosity: None,
+                    density: None,
+                },
+                summary,
+            }
+        }
+        Kind::Ehl => {
+            return Err(Error::Solver("steady EHL is not built yet".into()));
+        }
+    };
+    let mut solution = solution;
+    solution.summary.wall_time_s = start.elapsed().as_secs_f64();
+    progress.report(1.0, "done");
+    Ok(solution)
 }
 
 /// The text `ehl check` prints: derived quantities, dimensionless groups, classical film
