@@ -334,7 +334,7 @@ impl FftDeflection {
 
     fn build(grid: Grid, compliance: f64, bodies: &[BodyCompliance], line: bool) -> Self {
         let mut conv = Convolver::new(grid.nx, grid.ny);
-        let (a, b) = (0.5 * grid.dx, 0.5 * grid.dy);
+        let a = 0.5 * grid.dx;
         let (dx, dy) = (grid.dx, grid.dy);
         let mut translated: Vec<(f64, f64)> = Vec::new(); // (shift t, weight)
         let mut reflected: Vec<(f64, f64)> = Vec::new(); // (offset c, weight)
@@ -350,30 +350,35 @@ impl FftDeflection {
                 }
             }
         }
-        let direct = move |di: isize, dj: isize| -> f64 {
-            let x = di as f64 * dx;
-            if line {
-                return compliance * kernel::strip(x, a);
+        let (nx, ny) = (grid.nx, grid.ny);
+        let (wx, wy) = (2 * nx - 1, 2 * ny - 1);
+        // weighted sum of shifted rectangle tables: k(di, dj) = sum_t w_t rectangle(x, y - t)
+        let sum_tables = |terms: &[(f64, f64)]| -> Vec<f64> {
+            let mut acc = vec![0.0; wx * wy];
+            for &(t, w) in terms {
+                let table = kernel::rectangle_table(nx, ny, dx, dy, t);
+                acc.par_iter_mut().zip(table.par_iter()).for_each(|(s, v)| *s += w * v);
             }
-            let y = dj as f64 * dy;
-            let mut s = compliance * kernel::rectangle(x, y, a, b);
-            // image translated by t: source at y_l + t, offset y_j - y_l - t
-            for &(t, w) in &translated {
-                s += w * kernel::rectangle(x, y - t, a, b);
-            }
-            s
+            acc
         };
-        conv.direct = conv.kernel_spectrum(&direct);
-        if !reflected.is_empty() {
-            let refl = move |di: isize, dj: isize| -> f64 {
-                let x = di as f64 * dx;
-                let y = dj as f64 * dy;
-                reflected
-                    .iter()
-                    .map(|&(c, w)| w * kernel::rectangle(x, y + c, a, b))
-                    .sum()
-            };
-            conv.reflected = Some(conv.kernel_spectrum(&refl));
+        let lookup = |table: Vec<f64>| {
+            move |di: isize, dj: isize| -> f64 {
+                table[(dj + ny as isize - 1) as usize * wx + (di + nx as isize - 1) as usize]
+            }
+        };
+        if line {
+            let strip = move |di: isize, _dj: isize| compliance * kernel::strip(di as f64 * dx, a);
+            conv.direct = conv.kernel_spectrum(&strip);
+        } else {
+            // image translated by t: source at y_l + t, offset y_j - y_l - t
+            let mut terms = vec![(0.0, compliance)];
+            terms.extend(translated.iter().copied());
+            conv.direct = conv.kernel_spectrum(&lookup(sum_tables(&terms)));
+            if !reflected.is_empty() {
+                // reflected image: offset (j - l') dy + c, i.e. a shift t = -c
+                let terms: Vec<(f64, f64)> = reflected.iter().map(|&(c, w)| (-c, w)).collect();
+                conv.reflected = Some(conv.kernel_spectrum(&lookup(sum_tables(&terms))));
+            }
         }
         FftDeflection {
             grid,
