@@ -69,6 +69,10 @@ pub struct DryParams {
     /// lets `u` drift from `K p` and stalls the iteration near 1e-7; with 0 only ~10-20 % of
     /// the iterations need the second application, mostly early on each level).
     pub correction_fraction: f64,
+    /// Precondition the conjugate gradient with the approximate inverse of the half-space
+    /// operator ([`crate::elastic::InverseHalfSpace`], Vollebregt 2014): one more convolution per
+    /// iteration, far fewer iterations on fine grids.
+    pub precondition: bool,
 }
 
 impl Default for DryParams {
@@ -81,6 +85,7 @@ impl Default for DryParams {
             coarse_tolerance: 1e-6,
             refresh_interval: 50,
             correction_fraction: 0.0,
+            precondition: true,
         }
     }
 }
@@ -380,6 +385,17 @@ fn solve_level(
     p.iter_mut().for_each(|v| *v *= s);
 
     let c00 = op.coefficient(0, 0).abs();
+    // E' from the operator's own diagonal (its kernel is 2/(pi E') times the geometric one)
+    let geometric = if grid.ny == 1 {
+        crate::elastic::kernel::strip(0.0, 0.5 * grid.dx)
+    } else {
+        crate::elastic::kernel::rectangle(0.0, 0.0, 0.5 * grid.dx, 0.5 * grid.dy)
+    };
+    let e_est = 2.0 * geometric / (std::f64::consts::PI * c00);
+    let mut pre = (params.precondition && e_est.is_finite() && e_est > 0.0)
+        .then(|| crate::elastic::InverseHalfSpace::new(*grid, e_est));
+    let mut z = vec![0.0; n];
+    let mut zin = vec![0.0; n];
     let mut u = vec![0.0; n];
     let mut r = vec![0.0; n];
     let mut t = vec![0.0; n];
@@ -490,11 +506,34 @@ fn solve_level(
         }
         iterations += 1;
 
-        // Search direction on the contact set.
-        let beta = if conjugate { gg / g_old } else { 0.0 };
-        g_old = gg;
+        // Search direction on the contact set, preconditioned: z = Q M^-1 h with M^-1 the
+        // approximate inverse operator and Q the projection onto mean-free fields on the contact
+        // set (h is mean-free there already, so Q M^-1 Q stays symmetric).
+        let gz = if let Some(pre) = pre.as_mut() {
+            for k in 0..n {
+                zin[k] = if p[k] > 0.0 { h[k] } else { 0.0 };
+            }
+            pre.apply(&zin, &mut z);
+            applications += 1;
+            let mean = (0..n).filter(|&k| p[k] > 0.0).map(|k| z[k]).sum::<f64>() / nc as f64;
+            let mut gz = 0.0;
+            for k in 0..n {
+                if p[k] > 0.0 {
+                    z[k] -= mean;
+                    gz += h[k] * z[k];
+                } else {
+                    z[k] = 0.0;
+                }
+            }
+            gz
+        } else {
+            z.copy_from_slice(&h);
+            gg
+        };
+        let beta = if conjugate { gz / g_old } else { 0.0 };
+        g_old = gz;
         for k in 0..n {
-            t[k] = if p[k] > 0.0 { h[k] + beta * t[k] } else { 0.0 };
+            t[k] = if p[k] > 0.0 { z[k] + beta * t[k] } else { 0.0 };
         }
         op.apply(&t, &mut r);
         applications += 1;

@@ -16,7 +16,7 @@ pub mod dense;
 pub mod kernel;
 pub mod operator;
 
-pub use operator::{guilbault_psi, BodyCompliance, EndImages, FftDeflection};
+pub use operator::{guilbault_psi, BodyCompliance, EndImages, FftDeflection, InverseHalfSpace};
 
 use crate::grid::Grid;
 
