@@ -272,6 +272,92 @@ fn write_csv(dir: &Path, varies: &[Vary], pts: &[Point]) -> Result<usize> {
     Ok(rows)
 }
 
+/// The figure a study is usually about, with its axis label and scale to display units.
+const PLOT_FIGURES: [(&str, &str, f64); 5] = [
+    ("friction_coefficient", "friction coefficient (-)", 1.0),
+    ("central_film_m", "central film thickness (µm)", 1e6),
+    ("max_pressure_pa", "maximum pressure (GPa)", 1e-9),
+    ("approach_m", "approach (µm)", 1e6),
+    ("load_n", "load (N)", 1.0),
+];
+
+/// Draws `sweep.png`: the first summary figure of [`PLOT_FIGURES`] that the points report,
+/// against the first varied key, one curve per value of the second varied key (if any). Only
+/// converged points are drawn; a study over non-numeric values draws nothing.
+fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result<()> {
+    let Some(first) = varies.first() else {
+        return Ok(());
+    };
+    let mut rows = Vec::new();
+    for p in pts {
+        let Ok(raw) = std::fs::read_to_string(dir.join(&p.folder).join("summary.json")) else {
+            continue;
+        };
+        let Ok(json) = serde_json::from_str::<serde_json::Value>(&raw) else {
+            continue;
+        };
+        if figure(&json, "converged") != "true" {
+            continue;
+        }
+        let Ok(x) = label(&p.values[0]).parse::<f64>() else {
+            return Ok(());
+        };
+        let group = p.values.get(1).map(|v| label(v)).unwrap_or_default();
+        rows.push((x, group, json));
+    }
+    let Some(&(key, axis, scale)) = PLOT_FIGURES
+        .iter()
+        .find(|(k, _, _)| rows.iter().any(|(_, _, j)| figure(j, k).parse::<f64>().is_ok()))
+    else {
+        return Ok(());
+    };
+    let mut series: Vec<ehl::output::plot::Series> = Vec::new();
+    for (x, group, json) in &rows {
+        let Ok(y) = figure(json, key).parse::<f64>() else {
+            continue;
+        };
+        let name = match varies.get(1) {
+            Some(v) => format!("{} = {group}", v.key),
+            None => key.to_string(),
+        };
+        match series.iter_mut().find(|s| s.label == name) {
+            Some(s) => s.points.push((*x, y * scale)),
+            None => series.push(ehl::output::plot::Series {
+                label: name,
+                points: vec![(*x, y * scale)],
+            }),
+        }
+    }
+    if series.is_empty() {
+        return Ok(());
+    }
+    let path = dir.join("sweep.png");
+    // the SI unit of the varied key, from its last segment (the case file is all SI)
+    let last = first.key.rsplit('.').next().unwrap_or("");
+    let unit = match last {
+        "force" | "load" => " (N)",
+        "force_per_length" => " (N/m)",
+        "max_hertz_pressure" | "youngs_modulus" | "shear_modulus" | "eyring_stress" => " (Pa)",
+        "entrainment_speed" => " (m/s)",
+        "radius" | "radius_y" | "length" | "crown_radius" | "edge_length" | "edge_radius"
+        | "axial_offset" => " (m)",
+        "tilt" | "skew" | "angle" => " (rad)",
+        "viscosity" => " (Pa s)",
+        "pressure_viscosity_coefficient" => " (1/Pa)",
+        "density" => " (kg/m³)",
+        _ => " (-)",
+    };
+    ehl::output::plot::write_xy(
+        &path,
+        title,
+        &format!("{} converged points; the numbers are in sweep.csv", rows.len()),
+        &format!("{}{unit}", first.key),
+        axis,
+        &series,
+    )?;
+    Ok(())
+}
+
 enum Outcome {
     Solved { converged: bool },
     Skipped,
@@ -354,6 +440,8 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
     bar.finish();
 
     let rows = write_csv(&dir, &args.vary, &pts)?;
+    let title = cases.first().map(|c| c.title.clone()).unwrap_or_default();
+    write_plot(&dir, &title, &args.vary, &pts)?;
     let solved = outcomes
         .iter()
         .filter(|o| matches!(o, Outcome::Solved { .. }))

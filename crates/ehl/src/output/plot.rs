@@ -1042,3 +1042,113 @@ mod tests {
         assert_eq!(pieces[1][1], (2.0, 0.5));
     }
 }
+
+// ---------------------------------------------------------------- x-y charts (studies)
+
+/// One curve of an x-y chart: a legend label and its points.
+#[derive(Debug, Clone)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+const SERIES_COLORS: [RGBColor; 6] = [
+    RGBColor(200, 40, 30),
+    RGBColor(20, 90, 180),
+    RGBColor(30, 140, 60),
+    RGBColor(150, 70, 170),
+    RGBColor(230, 130, 0),
+    RGBColor(60, 60, 60),
+];
+
+/// A plain x-y chart with markers and a legend, for parameter studies (`sweep.png`, the
+/// validation pages): `x_label` and `y_label` carry the units. Non-finite points are skipped.
+pub fn write_xy(
+    path: &Path,
+    title: &str,
+    subtitle: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<()> {
+    let pts: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect();
+    if pts.is_empty() {
+        return Err(draw_err(path, "no finite point to draw"));
+    }
+    let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let pad = |lo: &mut f64, hi: &mut f64| {
+        let span = (*hi - *lo).max(1e-12 * hi.abs().max(1e-300));
+        *lo -= 0.05 * span;
+        *hi += 0.05 * span;
+    };
+    pad(&mut x0, &mut x1);
+    if y0 >= 0.0 {
+        y0 = 0.0; // magnitudes read best from zero
+    }
+    pad(&mut y0, &mut y1);
+    let lines = if subtitle.is_empty() {
+        vec![]
+    } else {
+        vec![subtitle.to_string()]
+    };
+    render(path, |root| {
+        let area = titled(root, title, &lines)?;
+        let (xs, ys) = (x1 - x0, y1 - y0);
+        let x_fmt = move |v: &f64| fmt_tick(*v, xs);
+        let y_fmt = move |v: &f64| fmt_tick(*v, ys);
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .x_label_area_size(62)
+            .y_label_area_size(96)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_labels(10)
+            .y_labels(8)
+            .max_light_lines(0)
+            .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
+            .label_style(text_style(16.0, BLACK))
+            .axis_desc_style(text_style(18.0, BLACK))
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .draw()?;
+        for (k, s) in series.iter().enumerate() {
+            let color = SERIES_COLORS[k % SERIES_COLORS.len()];
+            let style = ShapeStyle::from(&color).stroke_width(3);
+            let mut p: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .collect();
+            p.sort_by(|a, b| a.0.total_cmp(&b.0));
+            chart
+                .draw_series(LineSeries::new(p.clone(), style))?
+                .label(s.label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], style));
+            chart.draw_series(
+                p.iter()
+                    .map(|&q| Circle::new(q, 4, ShapeStyle::from(&color).filled())),
+            )?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .margin(12)
+            .legend_area_size(36)
+            .label_font(text_style(16.0, BLACK))
+            .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
+            .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+            .draw()?;
+        Ok(())
+    })
+}
