@@ -63,52 +63,42 @@ pub fn solve_line_p(c: &LineCase, nx: usize, xin: f64, xout: f64, par: &EhlParam
     (solve_steady(&prob, par), grid)
 }
 
+/// Every field finite and an honest report, whatever the outcome: the solver is stopped after a
+/// few V-cycles on a hard case (M = 1000, L = 10: a thin film on a coarse grid), so it cannot have
+/// converged to 1e-6; it must say so and return finite fields.
 #[test]
-fn explore() {
-    for &(m, l) in &[(20.0, 10.0), (100.0, 10.0), (1000.0, 10.0)] {
-        let c = line_case(m, l, ViscosityModel::Barus, DensityModel::Constant);
-        let mut par = EhlParams::default();
-        if let Ok(v) = std::env::var("MINC") { par.multigrid.min_cells = v.parse().unwrap(); }
-        if let Ok(v) = std::env::var("CS") { par.multigrid.coarse_sweeps = v.parse().unwrap(); }
-        if let Ok(v) = std::env::var("WJ") { par.multigrid.omega_jd = v.parse().unwrap(); }
-        if let Ok(v) = std::env::var("WG") { par.multigrid.omega_gs = v.parse().unwrap(); }
-        if let Ok(v) = std::env::var("HF") { par.multigrid.h0_factor = v.parse().unwrap(); }
-        let nx = std::env::var("NX").map(|v| v.parse().unwrap()).unwrap_or(256);
-        let (res, grid) = solve_line_p(&c, nx, -4.5, 1.5, &par);
-        let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
-        let i0 = (0..grid.nx).min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs())).unwrap();
-        let hc = res.film[i0];
-        let u = c.lub.viscosity * c.ue / (c.e * c.r);
-        let hm = moes_line_central(m, l) * c.r * u.sqrt();
-        println!("M {m} L {l}: conv {} {} it {} work {:.1} res {:.2e} lerr {:.2e} hc {:.4e} moes {:.4e} ratio {:.3} hmin {:.3e} pmax {:.3}",
-            res.converged, res.termination, res.iterations, res.work_units, res.residual, res.load_error, hc, hm, hc / hm, hmin,
-            res.pressure.iter().cloned().fold(0.0, f64::max) / c.ph);
+fn reports_honestly_and_never_nan() {
+    let c = line_case(1000.0, 10.0, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let mut par = EhlParams::default();
+    par.max_iterations = 3;
+    let (res, _) = solve_line_p(&c, 128, -4.5, 1.5, &par);
+    for (name, f) in [("p", &res.pressure), ("h", &res.film), ("eta", &res.viscosity), ("rho", &res.density)] {
+        assert!(f.iter().all(|v| v.is_finite()), "{name} not finite: {} {:?}", res.termination, &f[..4]);
+    }
+    assert!(res.residual.is_finite() && res.load_error.is_finite() && res.h0.is_finite());
+    assert!(!res.termination.is_empty());
+    if res.converged {
+        assert!(res.residual <= par.tolerance && res.load_error.abs() <= par.tolerance);
+    } else {
+        assert_ne!(res.termination, "converged");
     }
 }
 
+/// Central film against Moes (Barus, constant density: the assumptions of the fit).
+/// IGNORED: the solver does not yet converge to tolerance; at 256 cells on [-4.5, 1.5] b it
+/// stalls at a relative residual of ~1e-3 with h_c / Moes = 1.5-1.8 for M = 20, 100 (L = 10)
+/// and a negative film at M = 1000. Kept as the acceptance test for the next step.
 #[test]
-fn debug_relax() {
-    use ehl::reynolds::multigrid::*;
-    let c = line_case(100.0, 10.0, ViscosityModel::Barus, DensityModel::Constant);
-    let nx = 32;
-    let grid = Grid::new(nx, 1, -4.5 * c.b, 1.5 * c.b, -0.5, 0.5);
-    let r = c.r;
-    let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
-    let mut lv = Level::new(grid, Box::new(ToeplitzLine::new(grid, c.e)), &gap, c.b, c.r, c.ph);
-    let lambda = 12.0 * c.ue * c.lub.viscosity * r * r / (c.b.powi(3) * c.ph);
-    let phys = Physics { lubricant: c.lub.clone(), ph: c.ph, lambda };
-    for i in 0..nx { let x = grid.x(i) / c.b; lv.p[i] = (1.0 - x * x).max(0.0).sqrt(); }
-    lv.update_film(0.0, &phys);
-    let h0 = 0.3 - lv.h[lv.argmax()];
-    println!("h0 {h0} H {:?} gap {:?} def {:?}", &lv.h[..4], &lv.gap[..4], &lv.def[..4]);
-    lv.load = lv.carried();
-    let mp = MgParams::default();
-    println!("lambda {lambda}");
-    for s in 0..20 {
-        lv.relax(h0, &phys, &mp);
-        lv.update_film(h0, &phys);
-        let rn = lv.residual_norm();
-        println!("sweep {s} res {rn:.3e} pmax {:.3}", lv.p[lv.argmax()]);
+#[ignore]
+fn central_film_against_moes() {
+    for &(m, l) in &[(20.0, 10.0), (100.0, 10.0), (1000.0, 10.0), (100.0, 3.0), (100.0, 20.0)] {
+        let c = line_case(m, l, ViscosityModel::Barus, DensityModel::Constant);
+        let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
+        let i0 = (0..grid.nx).min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs())).unwrap();
+        let u = c.lub.viscosity * c.ue / (c.e * c.r);
+        let hm = moes_line_central(m, l) * c.r * u.sqrt();
+        assert!(res.converged, "M {m} L {l}: {}", res.termination);
+        // 10 %: the stated accuracy of the Moes fit over this range
+        assert!((res.film[i0] / hm - 1.0).abs() < 0.10, "M {m} L {l}: {} vs {}", res.film[i0], hm);
     }
-    for i in 0..nx { println!("{:.3} P {:.4} H {:.4} eps/dx2 {:.3e}", grid.x(i)/c.b, lv.p[i], lv.h[i], lv.eps[i]/lv.rg.dx.powi(2)); }
 }

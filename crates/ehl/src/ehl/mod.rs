@@ -184,10 +184,11 @@ pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
         mp,
         work: 0.0,
     };
+    // the starting state is the fallback if everything after it fails
+    let mut best: Option<(f64, Vec<f64>, f64)> = Some((f64::MAX, hier.levels[0].p.clone(), hier.h0));
     let coarse_start = 10 * mp.coarse_sweeps;
     hier.fmg(coarse_start);
 
-    let mut best: Option<(f64, Vec<f64>, f64)> = None;
     let mut iterations = 0;
     let mut converged = false;
     let mut termination = String::from("maximum number of iterations reached");
@@ -199,7 +200,12 @@ pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
         f.update_film(h0, &hier.phys);
         res = f.residual_norm();
         lerr = (f.carried() - f.load) / f.load;
-        let finite = res.is_finite() && lerr.is_finite() && h0.is_finite();
+        let finite = res.is_finite()
+            && lerr.is_finite()
+            && h0.is_finite()
+            && f.p.iter().chain(&f.h).all(|v| v.is_finite())
+            // a pressure 1000 times Hertz is divergence, whatever its floating-point value
+            && f.p.iter().all(|&v| v < 1e3);
         if !finite {
             termination = String::from("diverged: non-finite pressure or film");
             break;
