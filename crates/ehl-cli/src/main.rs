@@ -1,1 +1,207 @@
-fn main() {}
+//! The `ehl` command line: `run`, `check`, `sweep`. Thin: parsing, progress, exit codes; all the
+//! work is in the `ehl` library.
+
+mod progress;
+mod sweep;
+
+use anyhow::Result;
+use clap::{Args, Parser, Subcommand};
+use ehl::solution::Summary;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Exit status when the solver stopped without converging (outputs are still written).
+pub const EXIT_NOT_CONVERGED: u8 = 3;
+
+const EXIT_CODES: &str = "\
+Exit status:
+  0  success
+  1  error: bad case file or --set value, solver failure, or outputs not written
+     (the message names the file, the key and the reason)
+  2  command-line usage error (unknown option, malformed --vary or --shard, ...)
+  3  solved, but the solver did not converge: outputs are written and summary.json
+     has converged = false (sweep: at least one point did not converge)";
+
+/// Dry contact and elastohydrodynamic lubrication (EHL) of finite rollers and balls.
+#[derive(Parser)]
+#[command(name = "ehl", version, about, after_help = EXIT_CODES)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case and write its outputs (summary.json, fields, profiles, pictures).
+    #[command(after_help = EXIT_CODES)]
+    Run(RunArgs),
+    /// Validate a case without solving; print the derived quantities (E', R, Hertz, W U G,
+    /// Moes M L, film estimates, grid resolution).
+    #[command(after_help = EXIT_CODES)]
+    Check(CheckArgs),
+    /// Solve a case over a grid of parameter values, in parallel; one sub-folder per point and
+    /// sweep.csv with one row per finished point.
+    #[command(after_help = EXIT_CODES)]
+    Sweep(SweepArgs),
+}
+
+#[derive(Args)]
+struct CaseArgs {
+    /// The case file (TOML).
+    case: PathBuf,
+    /// Override a case key by its dotted path, e.g. `--set load.force=5000`,
+    /// `--set body1.profile='{ kind = "crowned", crown_radius = 0.5 }'`. VALUE is read as TOML
+    /// (number, true/false, "string", { inline table }, inf), else as a bare string. Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_set)]
+    set: Vec<String>,
+}
+
+#[derive(Args)]
+struct RunArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Output folder [default: out/<case file stem>]. Replaced as a whole when every output is
+    /// written; nothing is left behind on an error.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// No progress bar (it is shown only when stderr is a terminal anyway).
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+struct CheckArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+}
+
+#[derive(Args)]
+struct SweepArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// A varied key: `KEY=START:STOP:N` (N evenly spaced values, both ends included) or
+    /// `KEY=v1,v2,v3`. Repeatable: the points are all combinations, the first --vary
+    /// outermost.
+    #[arg(long, value_name = "KEY=SPEC", required = true, value_parser = sweep::Vary::parse)]
+    vary: Vec<sweep::Vary>,
+    /// Output folder [default: out/<case file stem>-sweep].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Points solved at the same time [default: the number of CPUs].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    jobs: Option<u32>,
+    /// Run only the points whose index i has i % N == K (K in 0..N), e.g. one Slurm array task
+    /// each. Every shard rebuilds sweep.csv from all finished points; a rerun skips points
+    /// whose folder already holds a summary.json.
+    #[arg(long, value_name = "K/N", value_parser = sweep::Shard::parse)]
+    shard: Option<sweep::Shard>,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// A command-line usage error found after parsing (exit status 2).
+#[derive(Debug)]
+pub struct Usage(pub String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Usage {}
+
+/// `--set` syntax only; the key and value are checked against the case by the library.
+fn parse_set(s: &str) -> std::result::Result<String, String> {
+    match ehl::case::split_assignment(s) {
+        Some(_) => Ok(s.to_string()),
+        None => Err("expected KEY=VALUE, e.g. load.force=5000".into()),
+    }
+}
+
+/// `out/<stem><suffix>` for a case file.
+fn default_out(case: &Path, suffix: &str) -> PathBuf {
+    let stem = case
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "case".into());
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
+}
+
+/// A short human-readable line of the main figures.
+pub fn result_line(s: &Summary) -> String {
+    let mut parts = vec![format!(
+        "max pressure {:.4} GPa (Hertz {:.4} GPa)",
+        s.max_pressure_pa * 1e-9,
+        s.hertz_pressure_pa * 1e-9
+    )];
+    if let Some(a) = s.approach_m {
+        parts.push(format!("approach {:.4} um", a * 1e6));
+    }
+    if let Some(a) = s.contact_area_m2 {
+        parts.push(format!("contact area {:.4} mm^2", a * 1e6));
+    }
+    if let Some(h) = s.central_film_m {
+        parts.push(format!("central film {:.4} um", h * 1e6));
+    }
+    if let Some(h) = s.min_film_m {
+        parts.push(format!("minimum film {:.4} um", h * 1e6));
+    }
+    if let Some(f) = s.friction_coefficient {
+        parts.push(format!("friction coefficient {f:.4}"));
+    }
+    let state = if s.converged {
+        format!("converged in {} iterations", s.iterations)
+    } else {
+        format!("NOT converged after {} iterations", s.iterations)
+    };
+    format!("{state} ({:.2} s): {}", s.wall_time_s, parts.join(", "))
+}
+
+fn run(args: RunArgs) -> Result<ExitCode> {
+    let case = ehl::case::load_file(&args.case.case, &args.case.set)?;
+    let dir = args.out.unwrap_or_else(|| default_out(&args.case.case, ""));
+    let bar = progress::Bar::new(args.quiet, 1000);
+    let solution = ehl::run::solve(&case, &bar);
+    bar.finish();
+    let solution = solution?;
+    ehl::output::write_all(&dir, &case, &solution)?;
+    println!("{} -> {}", result_line(&solution.summary), dir.display());
+    if solution.summary.converged {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        eprintln!(
+            "warning: the solver did not converge ({}); outputs written to {} with converged = false",
+            solution.summary.termination,
+            dir.display()
+        );
+        Ok(ExitCode::from(EXIT_NOT_CONVERGED))
+    }
+}
+
+fn check(args: CheckArgs) -> Result<ExitCode> {
+    let case = ehl::case::load_file(&args.case.case, &args.case.set)?;
+    println!("{}", ehl::run::check_text(&case));
+    Ok(ExitCode::SUCCESS)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(a) => run(a),
+        Command::Check(a) => check(a),
+        Command::Sweep(a) => sweep::sweep(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            if e.downcast_ref::<Usage>().is_some() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}

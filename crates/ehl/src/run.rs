@@ -28,5 +28,5 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
 /// The text `ehl check` prints: derived quantities, dimensionless groups, classical film
 /// estimates, grid resolution.
 pub fn check_text(case: &Case) -> String {
-    format!("{case:#?}")
+    crate::reference::check_report(case).to_string()
 }

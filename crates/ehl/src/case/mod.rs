@@ -1,8 +1,111 @@
-//! Case files: raw TOML structures, validation into [`Case`], `--set` overrides.
+//! Case files: TOML text -> `--set` overrides -> unknown-key check -> validation into [`Case`].
 //!
-//! Errors name the file, the dotted key and what is wrong; an unknown key names the closest
-//! valid key.
+//! Every error is an [`Error::Case`] naming the file, the full dotted key (`body1.radius`,
+//! `features[0].x`) and what is wrong; an unknown or misspelt key names the closest valid key
+//! ("did you mean `load.force`?"). An unreadable or malformed file is an [`Error::CaseFile`] with
+//! the TOML parser's line and column. Parts of the format that are not built yet (surface
+//! features, `motion.travel`) are parsed and checked, then refused with [`Error::Unsupported`].
+//! Nothing here panics on user input.
+//!
+//! # Defaults
+//!
+//! | key | default |
+//! | --- | --- |
+//! | `title` | `""` |
+//! | `body.radius_y` (ball) | `radius` (a sphere) |
+//! | `radius`, `radius_y`, `length` of a flat | `inf` (a plane); a ball's `length` and a roller's `radius_y` are `inf` too |
+//! | `body.profile` (roller) | `{ kind = "straight" }` |
+//! | `body2.axial_offset` | 0 m |
+//! | `[alignment]` `tilt`, `skew` | 0 rad |
+//! | `motion.slide_to_roll` | 0 (pure rolling) |
+//! | `lubricant.viscosity_model` | `"roelands"` |
+//! | `lubricant.density_model` | `"dowson-higginson"` |
+//! | `lubricant.rheology` | `{ model = "newtonian" }` |
+//! | `grid.nx`, `grid.ny` | 128 (`ny` = 1 for an infinite line contact) |
+//! | `grid.x_min`, `grid.x_max` | -1.5, 1.5 b (dry); -4.0, 1.5 b (ehl: room for the inlet meniscus) |
+//! | `grid.y_min`, `grid.y_max` | rollers: the union of both rollers' axial extents (body2 shifted by `axial_offset`), in b, i.e. the contact length plus any overhang; balls: -3, 3 (in a); infinite line: -0.5/b, 0.5/b, the 1 m reference strip of the library convention (ny = 1, dy = 1 m) |
+//! | `solver.tolerance` | 1e-6 |
+//! | `solver.max_iterations` | 500 for dry (constrained conjugate gradient: O(100) iterations on fine grids, more for misaligned cases), 200 for ehl |
+//! | `solver.mirror_levels` | 1 |
+//! | `solver.free_end_correction` | true |
+//!
+//! `[motion]` and `[lubricant]` are required for `kind = "ehl"` and ignored for `kind = "dry"`
+//! (they are still checked for unknown keys; the resolved case holds `None`).
+//!
+//! # Load and dimensionless forms
+//!
+//! Exactly one of `load.force` (N), `load.max_hertz_pressure` (Pa), `load.force_per_length`
+//! (N/m) or `load.dimensionless_load` (W). With E' = 2/((1-nu1^2)/E1 + (1-nu2^2)/E2) and
+//! 1/R = 1/R1 + 1/R2 (radii in the rolling plane; thesis eq. 2.5-2.8):
+//!
+//! * line contact (roller on roller or on a flat), contact length L = the axial overlap of the
+//!   rollers (or the roller length on a flat; L = 1 m reference for `length = inf`):
+//!   w' = F / L; from the Hertz pressure w' = 2 pi R p_h^2 / E' ([`crate::units::line_load_for_pressure`]);
+//!   from W: w' = W E' R. Then [`Load::force`] = w' L and [`Load::force_per_length`] = w'.
+//!   An infinite line contact (`length = inf`) must not use `force`.
+//! * point contact (ball on flat or ball): F directly; from the Hertz pressure of a circular
+//!   contact F = (2 pi/3) p0 a^2 with a = pi p0 R/E' ([`crate::units::point_load_for_pressure`];
+//!   refused for an elliptical ball); from W: F = W E' R^2. `force_per_length` is refused;
+//!   [`Load::force_per_length`] is set to F/(2a), the mean load per unit length across the
+//!   Hertz contact diameter, so that it is finite.
+//! * `motion.dimensionless_speed` U: u_e = U E' R / eta0; `lubricant.dimensionless_material` G:
+//!   alpha = G / E'.
+//!
+//! The grid's unit length is the Hertz half-width: b = sqrt(8 w' R/(pi E')) for line contacts
+//! ([`crate::units::hertz_line_half_width`]), the contact radius a = (3 F R/(2 E'))^(1/3) for
+//! balls ([`crate::units::hertz_point`], with R the reduced radius in x also for an ellipsoid).
+//!
+//! # Overrides
+//!
+//! `--set KEY=VALUE` strings are applied to the TOML tree before validation; see
+//! [`overrides`].
 
 pub mod model;
+pub mod overrides;
+pub(crate) mod read;
+mod resolve;
+pub mod schema;
 
 pub use model::*;
+pub use overrides::{check_key, parse_value, split_assignment};
+pub use resolve::{
+    DEFAULT_CELLS, DEFAULT_DRY_ITERATIONS, DEFAULT_EHL_ITERATIONS, MAX_CELLS,
+    MIN_CELLS_ACROSS_CONTACT,
+};
+
+use crate::{Error, Result};
+use std::path::Path;
+use toml::Table;
+
+/// Reads, overrides and validates a case file. `overrides` are `"dotted.key=value"` strings
+/// (the CLI's `--set`). Errors name the file as given in `path`.
+pub fn load_file(path: &Path, overrides: &[String]) -> Result<Case> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| Error::CaseFile {
+        file: file.clone(),
+        message: format!("cannot read the case file: {e}"),
+    })?;
+    parse_str(&text, &file, overrides)
+}
+
+/// Parses case text (`file` names it in errors), applies `overrides`, validates.
+pub fn parse_str(text: &str, file: &str, overrides: &[String]) -> Result<Case> {
+    let mut root: Table = text.parse().map_err(|e: toml::de::Error| Error::CaseFile {
+        file: file.to_string(),
+        message: format!("not valid TOML: {}", e.to_string().trim_end()),
+    })?;
+    for o in overrides {
+        overrides::apply(&mut root, o, file)?;
+    }
+    if let Some(key) = schema::first_unknown(&root) {
+        return Err(Error::Case {
+            file: file.to_string(),
+            message: schema::unknown_key_message(&key),
+            key,
+        });
+    }
+    resolve::resolve(&root, file)
+}
+
+#[cfg(test)]
+mod tests;

@@ -2,6 +2,7 @@
 //! reference the FFT operators are tested against (as RustFFT tests every algorithm against a
 //! naive DFT).
 
+use super::operator::{images, BodyCompliance};
 use super::{kernel, Deflection};
 use crate::grid::Grid;
 
@@ -12,6 +13,8 @@ pub struct DenseDeflection {
     grid: Grid,
     compliance: f64,
     line: bool,
+    /// explicit images: (sign, shift, weight * body compliance)
+    images: Vec<(f64, f64, f64)>,
 }
 
 impl DenseDeflection {
@@ -21,6 +24,26 @@ impl DenseDeflection {
             grid,
             compliance: kernel::compliance(e_red),
             line: false,
+            images: Vec::new(),
+        }
+    }
+
+    /// Half-space with every mirror image enumerated explicitly (the reference for
+    /// [`super::FftDeflection::with_images`]).
+    pub fn with_images(grid: Grid, bodies: &[BodyCompliance]) -> Self {
+        let mut all = Vec::new();
+        for b in bodies {
+            if let Some(img) = &b.images {
+                for (s, t, w) in images(img) {
+                    all.push((s, t, w * b.compliance));
+                }
+            }
+        }
+        DenseDeflection {
+            grid,
+            compliance: bodies.iter().map(|b| b.compliance).sum(),
+            line: false,
+            images: all,
         }
     }
 
@@ -31,6 +54,7 @@ impl DenseDeflection {
             grid,
             compliance: kernel::compliance(e_red),
             line: true,
+            images: Vec::new(),
         }
     }
 }
@@ -48,8 +72,14 @@ impl Deflection for DenseDeflection {
                 for l in 0..g.ny {
                     for k in 0..g.nx {
                         let pk = p[g.idx(k, l)];
-                        if pk != 0.0 {
-                            s += pk * self.coefficient(i as isize - k as isize, j as isize - l as isize);
+                        if pk == 0.0 {
+                            continue;
+                        }
+                        s += pk * self.coefficient(i as isize - k as isize, j as isize - l as isize);
+                        let (x, y) = (g.x(i) - g.x(k), g.y(j));
+                        for &(sign, shift, w) in &self.images {
+                            let yl = sign * g.y(l) + shift;
+                            s += pk * w * kernel::rectangle(x, y - yl, 0.5 * g.dx, 0.5 * g.dy);
                         }
                     }
                 }

@@ -3,6 +3,8 @@
 //! * [`kernel`]: the influence coefficient of one uniformly loaded rectangle on a half-space
 //!   (Love 1929; thesis eq. 1.11-1.12) and of one uniformly loaded strip (plane strain, for the
 //!   infinite line contact).
+//! * [`operator`]: the DC-FFT operator (O(N log N)) with mirror images and Guilbault's psi at the
+//!   free roller ends: what the solvers use;
 //! * [`dense`]: the O(N^2) direct sum, kept as the reference the fast operators are tested against.
 //!
 //! Conventions: pressure in Pa, positive in compression; deflection in m, the *sum* of both
@@ -12,6 +14,9 @@
 
 pub mod dense;
 pub mod kernel;
+pub mod operator;
+
+pub use operator::{guilbault_psi, BodyCompliance, EndImages, FftDeflection};
 
 use crate::grid::Grid;
 

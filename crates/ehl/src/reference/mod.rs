@@ -1,1 +1,16 @@
-//! Analytic and classical reference results used by `ehl check` and the tests (Hertz, Moes, Pan-Hamrock, Hamrock-Dowson, Palmgren).
+//! Analytic and classical reference results used by `ehl check` and the tests (Hertz, Moes,
+//! Pan-Hamrock, Dowson-Higginson, Hamrock-Dowson, Palmgren).
+//!
+//! * [`hertz`]: complete elliptic integrals, exact elliptical Hertz contact, Hamrock-Brewe
+//!   approximations (line and circular Hertz are in [`crate::units`]).
+//! * [`film`]: classical EHL film-thickness fits, each with its groups and the lubricant laws
+//!   of the solutions it was fitted to.
+//! * [`palmgren`]: the empirical roller approach.
+//! * [`check`]: the `ehl check` report.
+
+pub mod check;
+pub mod film;
+pub mod hertz;
+pub mod palmgren;
+
+pub use check::{check_report, CheckReport};

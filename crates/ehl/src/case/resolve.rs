@@ -1,0 +1,1244 @@
+//! Validation of the TOML tree and resolution into a [`Case`]: defaults filled, load and
+//! dimensionless forms converted to SI, grid extents checked against the Hertz half-width.
+//! The defaults are listed in the documentation of [`super`].
+
+use super::model::*;
+use super::read::{case_err, choose, describe, fmt_num, Sec, R};
+use crate::units;
+use crate::Error;
+use std::f64::consts::FRAC_PI_2;
+use toml::{Table, Value};
+
+/// Default cells per direction when `grid.nx` / `grid.ny` are absent.
+pub const DEFAULT_CELLS: usize = 128;
+/// Fewest cells across the Hertz contact width 2b (2a for a ball) along x, and along the contact
+/// in y, that resolve the pressure: with fewer, the Hertz ellipse is sampled by a handful of
+/// points and maximum pressure, approach and film are off by many per cent.
+pub const MIN_CELLS_ACROSS_CONTACT: f64 = 8.0;
+/// Largest grid accepted (cells): 2^26 cells hold 0.5 GB per field.
+pub const MAX_CELLS: usize = 1 << 26;
+/// Default `solver.max_iterations` for dry contact. The constrained conjugate-gradient methods
+/// need O(100) iterations on fine grids (Polonsky-Keer: ~95 at 512^2), more for rough or
+/// strongly misaligned cases; the cap is only a safety net.
+pub const DEFAULT_DRY_ITERATIONS: usize = 500;
+/// Default `solver.max_iterations` for EHL (multigrid cycles or Newton steps, the outer
+/// load-balance iterations).
+pub const DEFAULT_EHL_ITERATIONS: usize = 200;
+
+const SHAPES: &[&str] = &["roller", "ball", "flat"];
+const PROFILE_KINDS: &[&str] = &[
+    "straight",
+    "crowned",
+    "logarithmic",
+    "rounded-edge",
+    "chamfer",
+];
+const RHEOLOGY_MODELS: &[&str] = &["newtonian", "carreau", "eyring"];
+const FEATURE_KINDS: &[&str] = &["pit", "dent", "height-map"];
+const LOAD_FORMS: &[&str] = &[
+    "force",
+    "max_hertz_pressure",
+    "force_per_length",
+    "dimensionless_load",
+];
+
+fn forbid(s: &Sec, k: &str, why: &str) -> R<()> {
+    if s.has(k) {
+        Err(s.err(k, why.to_string()))
+    } else {
+        Ok(())
+    }
+}
+
+fn required<T>(v: Option<T>, s: &Sec, k: &str, what: &str) -> R<T> {
+    v.ok_or_else(|| s.missing(k, what))
+}
+
+/// A required table of the top level.
+fn sub<'a>(top: &Sec<'a>, k: &str, what: &str) -> R<Option<&'a Table>> {
+    top.table(k, what)
+}
+
+fn mm(v: f64) -> String {
+    fmt_num(v * 1e3)
+}
+
+/// `[body1]` / `[body2]`.
+fn body(top: &Sec, name: &str) -> R<Body> {
+    let t = sub(top, name, "the body's shape, size and elastic constants")?.ok_or_else(|| {
+        top.missing(
+            name,
+            &format!("a [{name}] table with shape, radius, youngs_modulus and poisson_ratio"),
+        )
+    })?;
+    let s = Sec {
+        file: top.file,
+        path: name,
+        table: t,
+    };
+    let shape = match s.choice("shape", SHAPES)? {
+        Some("roller") => Shape::Roller,
+        Some("ball") => Shape::Ball,
+        Some(_) => Shape::Flat,
+        None => return Err(s.missing("shape", "shape = \"roller\", \"ball\" or \"flat\"")),
+    };
+    let youngs_modulus = required(
+        s.positive("youngs_modulus", "Pa")?,
+        &s,
+        "youngs_modulus",
+        "Young's modulus in Pa, e.g. youngs_modulus = 210e9 for steel",
+    )?;
+    let nu = required(
+        s.num("poisson_ratio", "dimensionless")?,
+        &s,
+        "poisson_ratio",
+        "Poisson's ratio, e.g. poisson_ratio = 0.3 for steel",
+    )?;
+    if !(nu > -1.0 && nu < 0.5) {
+        return Err(s.err(
+            "poisson_ratio",
+            format!(
+                "must lie strictly between -1 and 0.5 for an isotropic elastic solid (0.5 is incompressible, where the half-space model breaks down); found {}",
+                fmt_num(nu)
+            ),
+        ));
+    }
+
+    let radius_of = |s: &Sec| -> R<f64> {
+        let r = required(
+            s.num("radius", "m")?,
+            s,
+            "radius",
+            "the radius in the rolling plane in m, e.g. radius = 0.03",
+        )?;
+        if r.is_infinite() && r > 0.0 {
+            return Err(s.err(
+                "radius",
+                "a curved body needs a finite radius; for a plane use shape = \"flat\"",
+            ));
+        }
+        if !(r > 0.0 && r.is_finite()) {
+            return Err(s.err(
+                "radius",
+                format!(
+                    "must be a positive, finite number (m), found {}",
+                    fmt_num(r)
+                ),
+            ));
+        }
+        Ok(r)
+    };
+
+    let mut b = Body {
+        shape,
+        radius: f64::INFINITY,
+        radius_y: f64::INFINITY,
+        length: f64::INFINITY,
+        youngs_modulus,
+        poisson_ratio: nu,
+        profile: Profile::Straight,
+        axial_offset: 0.0,
+    };
+    match shape {
+        Shape::Roller => {
+            b.radius = radius_of(&s)?;
+            forbid(
+                &s,
+                "radius_y",
+                "is for balls only (the ellipsoid's radius in the axial plane); a roller's axial shape is set by length and profile",
+            )?;
+            let len = required(
+                s.num("length", "m")?,
+                &s,
+                "length",
+                "the roller's axial length in m, e.g. length = 9.5e-3 (length = inf gives an infinite line contact)",
+            )?;
+            if len.is_nan() || len <= 0.0 {
+                return Err(s.err(
+                    "length",
+                    format!(
+                        "must be positive (m; inf for an infinite line contact), found {}",
+                        fmt_num(len)
+                    ),
+                ));
+            }
+            b.length = len;
+            b.profile = profile(&s, len)?;
+        }
+        Shape::Ball => {
+            b.radius = radius_of(&s)?;
+            b.radius_y = s.positive("radius_y", "m")?.unwrap_or(b.radius);
+            forbid(
+                &s,
+                "length",
+                "a ball has no axial length (for an ellipsoid give radius_y instead)",
+            )?;
+            forbid(
+                &s,
+                "profile",
+                "is for rollers only (the axial profile of a roller)",
+            )?;
+        }
+        Shape::Flat => {
+            forbid(
+                &s,
+                "radius",
+                "a flat is a plane and has no radius; leave the key out",
+            )?;
+            forbid(&s, "radius_y", "is for balls only; a flat is a plane")?;
+            forbid(
+                &s,
+                "length",
+                "a flat is unbounded along y; for a disc of finite width use shape = \"roller\" with the disc radius",
+            )?;
+            forbid(
+                &s,
+                "profile",
+                "is for rollers only (the axial profile of a roller)",
+            )?;
+        }
+    }
+    if name == "body2" {
+        b.axial_offset = s.finite("axial_offset", "m")?.unwrap_or(0.0);
+    }
+    Ok(b)
+}
+
+/// `bodyN.profile`: a table `{ kind = ..., params }` or the bare word "straight".
+fn profile(s: &Sec, length: f64) -> R<Profile> {
+    let key = s.key("profile");
+    let p = match s.get("profile") {
+        None => Profile::Straight,
+        Some(Value::String(k)) => {
+            let kind = choose(k, PROFILE_KINDS).map_err(|m| s.err("profile", m))?;
+            if kind != "straight" {
+                return Err(s.err(
+                    "profile",
+                    format!(
+                        "profile \"{kind}\" needs its parameters: write it as a table, e.g. {}",
+                        profile_example(kind)
+                    ),
+                ));
+            }
+            Profile::Straight
+        }
+        Some(Value::Table(t)) => {
+            let p = Sec {
+                file: s.file,
+                path: &key,
+                table: t,
+            };
+            let kind = required(
+                p.choice("kind", PROFILE_KINDS)?,
+                &p,
+                "kind",
+                "the profile kind: \"straight\", \"crowned\", \"logarithmic\", \"rounded-edge\" or \"chamfer\"",
+            )?;
+            let params: &[&str] = match kind {
+                "crowned" => &["crown_radius"],
+                "logarithmic" => &["load"],
+                "rounded-edge" => &["edge_length", "edge_radius"],
+                "chamfer" => &["edge_length", "angle"],
+                _ => &[],
+            };
+            for k in t.keys() {
+                if k != "kind" && !params.contains(&k.as_str()) {
+                    let list = if params.is_empty() {
+                        "none".to_string()
+                    } else {
+                        params.join(", ")
+                    };
+                    return Err(p.err(
+                        k,
+                        format!("is not a parameter of profile kind \"{kind}\" (its parameters: {list})"),
+                    ));
+                }
+            }
+            let need = |k: &str, unit: &str| -> R<f64> {
+                required(
+                    p.positive(k, unit)?,
+                    &p,
+                    k,
+                    &format!(
+                        "{k} ({unit}) for profile kind \"{kind}\", e.g. {}",
+                        profile_example(kind)
+                    ),
+                )
+            };
+            let edge = |p: &Sec, e: f64| -> R<f64> {
+                if length.is_finite() && e >= 0.5 * length {
+                    return Err(p.err(
+                        "edge_length",
+                        format!(
+                            "each roller end's edge zone must be shorter than half the roller length ({} mm), found {} mm",
+                            mm(0.5 * length),
+                            mm(e)
+                        ),
+                    ));
+                }
+                Ok(e)
+            };
+            match kind {
+                "straight" => Profile::Straight,
+                "crowned" => Profile::Crowned {
+                    crown_radius: need("crown_radius", "m")?,
+                },
+                "logarithmic" => Profile::Logarithmic {
+                    load: need("load", "N")?,
+                },
+                "rounded-edge" => Profile::RoundedEdge {
+                    edge_length: edge(&p, need("edge_length", "m")?)?,
+                    edge_radius: need("edge_radius", "m")?,
+                },
+                _ => {
+                    let edge_length = edge(&p, need("edge_length", "m")?)?;
+                    let angle = need("angle", "rad")?;
+                    if angle >= FRAC_PI_2 {
+                        return Err(p.err(
+                            "angle",
+                            format!(
+                                "a chamfer angle must lie between 0 and pi/2 rad, found {}",
+                                fmt_num(angle)
+                            ),
+                        ));
+                    }
+                    Profile::Chamfer { edge_length, angle }
+                }
+            }
+        }
+        Some(v) => {
+            return Err(s.err(
+                "profile",
+                format!(
+                    "expected a table such as {}, found {}",
+                    profile_example("crowned"),
+                    describe(v)
+                ),
+            ))
+        }
+    };
+    if length.is_infinite() && p != Profile::Straight {
+        return Err(s.err(
+            "profile",
+            "an infinite roller (length = inf) has no ends and no crown: its profile must be straight",
+        ));
+    }
+    Ok(p)
+}
+
+fn profile_example(kind: &str) -> &'static str {
+    match kind {
+        "crowned" => "profile = { kind = \"crowned\", crown_radius = 0.5 }",
+        "logarithmic" => "profile = { kind = \"logarithmic\", load = 8000.0 }",
+        "rounded-edge" => {
+            "profile = { kind = \"rounded-edge\", edge_length = 1e-3, edge_radius = 0.01 }"
+        }
+        "chamfer" => "profile = { kind = \"chamfer\", edge_length = 0.5e-3, angle = 0.01 }",
+        _ => "profile = { kind = \"straight\" }",
+    }
+}
+
+/// What kind of contact the two bodies make.
+#[derive(Debug, Clone, Copy)]
+enum Contact {
+    /// Line contact (roller on roller or on flat): `len` contact length (inf for an infinite
+    /// line), `lo..hi` the axial overlap, `ulo..uhi` the union of the finite bodies' extents (m).
+    Line {
+        len: f64,
+        lo: f64,
+        hi: f64,
+        ulo: f64,
+        uhi: f64,
+    },
+    /// Point contact (ball on flat or ball on ball); `circular` when R_x == R_y.
+    Point { circular: bool },
+}
+
+fn contact(top: &Sec, b1: &Body, b2: &Body) -> R<Contact> {
+    use Shape::*;
+    let file = top.file;
+    let offset_given = top
+        .get("body2")
+        .and_then(|v| v.as_table())
+        .is_some_and(|t| t.contains_key("axial_offset"));
+    if offset_given && !(b1.shape == Roller && b2.shape == Roller) {
+        return Err(case_err(
+            file,
+            "body2.axial_offset",
+            "only shifts one roller against another; it has no meaning when a body is a ball or a flat",
+        ));
+    }
+    match (b1.shape, b2.shape) {
+        (Flat, Flat) => Err(case_err(
+            file,
+            "body2.shape",
+            "two flats make no contact: one body must be a roller or a ball",
+        )),
+        (Ball, Roller) | (Roller, Ball) => {
+            let k = if b1.shape == Roller {
+                "body1.shape"
+            } else {
+                "body2.shape"
+            };
+            Err(Error::Unsupported {
+                file: file.to_string(),
+                key: k.to_string(),
+                message: "a ball against a roller is not built yet; a ball on a flat (with radius_y for an elliptical contact) or on another ball is".into(),
+            })
+        }
+        (Ball, _) | (_, Ball) => {
+            let rx = units::reduced_radius(b1.radius, b2.radius);
+            let ry = units::reduced_radius(b1.radius_y, b2.radius_y);
+            Ok(Contact::Point {
+                circular: (rx - ry).abs() <= 1e-12 * rx,
+            })
+        }
+        _ => {
+            let ext = |b: &Body, c: f64| -> (f64, f64) {
+                if b.shape == Flat || b.length.is_infinite() {
+                    (f64::NEG_INFINITY, f64::INFINITY)
+                } else {
+                    (c - 0.5 * b.length, c + 0.5 * b.length)
+                }
+            };
+            let e1 = ext(b1, 0.0);
+            let e2 = ext(b2, b2.axial_offset);
+            let lo = e1.0.max(e2.0);
+            let hi = e1.1.min(e2.1);
+            if hi <= lo {
+                return Err(case_err(
+                    file,
+                    "body2.axial_offset",
+                    format!(
+                        "the rollers do not overlap along the axis: body1 spans y = {} .. {} mm and body2 (shifted by {} mm) spans y = {} .. {} mm",
+                        mm(e1.0), mm(e1.1), mm(b2.axial_offset), mm(e2.0), mm(e2.1)
+                    ),
+                ));
+            }
+            let fin = [e1, e2].into_iter().filter(|e| e.0.is_finite());
+            let (mut ulo, mut uhi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for e in fin {
+                ulo = ulo.min(e.0);
+                uhi = uhi.max(e.1);
+            }
+            Ok(Contact::Line {
+                len: hi - lo,
+                lo,
+                hi,
+                ulo,
+                uhi,
+            })
+        }
+    }
+}
+
+/// `[load]` -> (Load, Hertz half-width b or contact radius a in m).
+fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
+    let what = "a [load] table with one of force (N), max_hertz_pressure (Pa), force_per_length (N/m) or dimensionless_load";
+    let t = sub(top, "load", "the applied load")?.ok_or_else(|| top.missing("load", what))?;
+    let s = Sec {
+        file: top.file,
+        path: "load",
+        table: t,
+    };
+    let given: Vec<&str> = LOAD_FORMS.iter().copied().filter(|k| s.has(k)).collect();
+    match given.len() {
+        0 => return Err(top.missing("load", what)),
+        1 => {}
+        _ => {
+            return Err(s.err(
+                given[1],
+                format!(
+                    "give exactly one form of the load, found both `load.{}` and `load.{}`",
+                    given[0], given[1]
+                ),
+            ))
+        }
+    }
+    let form = given[0];
+    let units_of = |k: &str| match k {
+        "force" => "N",
+        "max_hertz_pressure" => "Pa",
+        "force_per_length" => "N/m",
+        _ => "dimensionless",
+    };
+    let v = s.positive(form, units_of(form))?.expect("present");
+    match c {
+        Contact::Point { circular } => {
+            let f = match form {
+                "force" => v,
+                "max_hertz_pressure" if circular => units::point_load_for_pressure(v, r, e_red),
+                "max_hertz_pressure" => {
+                    return Err(Error::Unsupported {
+                        file: top.file.to_string(),
+                        key: "load.max_hertz_pressure".into(),
+                        message: "the load for a given Hertz pressure of an elliptical contact (radius_y != radius) is not built yet; give load.force".into(),
+                    })
+                }
+                "force_per_length" => {
+                    return Err(s.err(
+                        form,
+                        "a ball makes a point contact, which has no load per unit length: give load.force (N), max_hertz_pressure (Pa) or dimensionless_load (W = F/(E' R^2))",
+                    ))
+                }
+                // W = F / (E' R^2)
+                _ => v * e_red * r * r,
+            };
+            let a = units::hertz_point(f, r, e_red).a;
+            Ok((
+                Load {
+                    force: f,
+                    force_per_length: f / (2.0 * a),
+                },
+                a,
+            ))
+        }
+        Contact::Line { len, .. } => {
+            let w = match form {
+                "force" if len.is_infinite() => {
+                    return Err(s.err(
+                        form,
+                        "an infinite line contact (length = inf) has no total load: give load.force_per_length (N/m) instead (or max_hertz_pressure or dimensionless_load)",
+                    ))
+                }
+                "force" => v / len,
+                "max_hertz_pressure" => units::line_load_for_pressure(v, r, e_red),
+                "force_per_length" => v,
+                // W = w' / (E' R)
+                _ => v * e_red * r,
+            };
+            let l = if len.is_finite() { len } else { 1.0 };
+            Ok((
+                Load {
+                    force: w * l,
+                    force_per_length: w,
+                },
+                units::hertz_line_half_width(w, r, e_red),
+            ))
+        }
+    }
+}
+
+/// `[lubricant]` (ehl only).
+fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
+    let t = sub(top, "lubricant", "the lubricant's properties")?.ok_or_else(|| {
+        top.missing(
+            "lubricant",
+            "a [lubricant] table for kind = \"ehl\" (viscosity, pressure_viscosity_coefficient, density)",
+        )
+    })?;
+    let s = Sec {
+        file: top.file,
+        path: "lubricant",
+        table: t,
+    };
+    let viscosity = required(
+        s.positive("viscosity", "Pa s")?,
+        &s,
+        "viscosity",
+        "the viscosity at ambient pressure in Pa s, e.g. viscosity = 0.04",
+    )?;
+    let alpha = match (
+        s.has("pressure_viscosity_coefficient"),
+        s.has("dimensionless_material"),
+    ) {
+        (true, true) => {
+            return Err(s.err(
+                "dimensionless_material",
+                "give either pressure_viscosity_coefficient (alpha, 1/Pa) or dimensionless_material (G = alpha E'), not both",
+            ))
+        }
+        (false, false) => {
+            return Err(s.missing(
+                "pressure_viscosity_coefficient",
+                "the pressure-viscosity coefficient alpha in 1/Pa, e.g. pressure_viscosity_coefficient = 15.9e-9 (or dimensionless_material = G)",
+            ))
+        }
+        (true, false) => {
+            let a = s
+                .non_negative("pressure_viscosity_coefficient", "1/Pa")?
+                .expect("present");
+            if a > 1e-6 {
+                return Err(s.err(
+                    "pressure_viscosity_coefficient",
+                    format!(
+                        "alpha = {} 1/Pa is far above any lubricant (mineral oils: 1e-8 to 3e-8 1/Pa); it is given in 1/Pa, so 15.9 GPa^-1 is written 15.9e-9",
+                        fmt_num(a)
+                    ),
+                ));
+            }
+            a
+        }
+        (false, true) => {
+            // G = alpha E'
+            s.non_negative("dimensionless_material", "dimensionless")?
+                .expect("present")
+                / e_red
+        }
+    };
+    let density = required(
+        s.positive("density", "kg/m^3")?,
+        &s,
+        "density",
+        "the density at ambient pressure in kg/m^3, e.g. density = 846",
+    )?;
+    let viscosity_model = match s.choice("viscosity_model", &["roelands", "barus"])? {
+        Some("barus") => ViscosityModel::Barus,
+        _ => ViscosityModel::Roelands,
+    };
+    let density_model = match s.choice("density_model", &["dowson-higginson", "constant"])? {
+        Some("constant") => DensityModel::Constant,
+        _ => DensityModel::DowsonHigginson,
+    };
+    Ok(Lubricant {
+        viscosity,
+        pressure_viscosity_coefficient: alpha,
+        density,
+        viscosity_model,
+        density_model,
+        rheology: rheology(&s)?,
+    })
+}
+
+fn rheology(s: &Sec) -> R<Rheology> {
+    let key = s.key("rheology");
+    let t = match s.get("rheology") {
+        None => return Ok(Rheology::Newtonian),
+        Some(Value::String(m)) => {
+            let m = choose(m, RHEOLOGY_MODELS).map_err(|e| s.err("rheology", e))?;
+            if m != "newtonian" {
+                return Err(s.err(
+                    "rheology",
+                    format!(
+                        "rheology \"{m}\" needs its parameters: write it as a table, e.g. {}",
+                        rheology_example(m)
+                    ),
+                ));
+            }
+            return Ok(Rheology::Newtonian);
+        }
+        Some(Value::Table(t)) => t,
+        Some(v) => {
+            return Err(s.err(
+                "rheology",
+                format!(
+                    "expected a table such as {}, found {}",
+                    rheology_example("carreau"),
+                    describe(v)
+                ),
+            ))
+        }
+    };
+    let p = Sec {
+        file: s.file,
+        path: &key,
+        table: t,
+    };
+    let model = required(
+        p.choice("model", RHEOLOGY_MODELS)?,
+        &p,
+        "model",
+        "the rheology model: \"newtonian\", \"carreau\" or \"eyring\"",
+    )?;
+    let params: &[&str] = match model {
+        "carreau" => &[
+            "shear_modulus",
+            "power_law_index",
+            "limiting_shear_coefficient",
+        ],
+        "eyring" => &["eyring_stress", "limiting_shear_coefficient"],
+        _ => &[],
+    };
+    for k in t.keys() {
+        if k != "model" && !params.contains(&k.as_str()) {
+            let list = if params.is_empty() {
+                "none".to_string()
+            } else {
+                params.join(", ")
+            };
+            return Err(p.err(
+                k,
+                format!(
+                    "is not a parameter of rheology model \"{model}\" (its parameters: {list})"
+                ),
+            ));
+        }
+    }
+    let need = |k: &str, unit: &str| -> R<f64> {
+        required(
+            p.positive(k, unit)?,
+            &p,
+            k,
+            &format!(
+                "{k} ({unit}) for rheology model \"{model}\", e.g. {}",
+                rheology_example(model)
+            ),
+        )
+    };
+    let lsc = p.positive("limiting_shear_coefficient", "dimensionless, tau_L / p")?;
+    Ok(match model {
+        "carreau" => {
+            let shear_modulus = need("shear_modulus", "Pa")?;
+            let n = need("power_law_index", "dimensionless")?;
+            if n > 1.0 {
+                return Err(p.err(
+                    "power_law_index",
+                    format!("the Carreau power-law index of a shear-thinning lubricant lies in (0, 1], found {}", fmt_num(n)),
+                ));
+            }
+            Rheology::Carreau {
+                shear_modulus,
+                power_law_index: n,
+                limiting_shear_coefficient: lsc,
+            }
+        }
+        "eyring" => Rheology::Eyring {
+            eyring_stress: need("eyring_stress", "Pa")?,
+            limiting_shear_coefficient: lsc,
+        },
+        _ => Rheology::Newtonian,
+    })
+}
+
+fn rheology_example(model: &str) -> &'static str {
+    match model {
+        "carreau" => "rheology = { model = \"carreau\", shear_modulus = 4.5e6, power_law_index = 0.57, limiting_shear_coefficient = 0.06 }",
+        "eyring" => "rheology = { model = \"eyring\", eyring_stress = 5e6, limiting_shear_coefficient = 0.06 }",
+        _ => "rheology = { model = \"newtonian\" }",
+    }
+}
+
+/// `[motion]` (ehl only). Returns the motion and whether `motion.travel` was given.
+fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
+    let t = sub(top, "motion", "the surface speeds")?.ok_or_else(|| {
+        top.missing(
+            "motion",
+            "a [motion] table for kind = \"ehl\" (entrainment_speed in m/s, slide_to_roll)",
+        )
+    })?;
+    let s = Sec {
+        file: top.file,
+        path: "motion",
+        table: t,
+    };
+    let u_e = match (s.has("entrainment_speed"), s.has("dimensionless_speed")) {
+        (true, true) => {
+            return Err(s.err(
+                "dimensionless_speed",
+                "give either entrainment_speed (m/s) or dimensionless_speed (U = eta0 u_e/(E' R)), not both",
+            ))
+        }
+        (false, false) => {
+            return Err(s.missing(
+                "entrainment_speed",
+                "the entrainment speed u_e = (u1 + u2)/2 in m/s, e.g. entrainment_speed = 2.7 (or dimensionless_speed = U)",
+            ))
+        }
+        (true, false) => s.positive("entrainment_speed", "m/s")?.expect("present"),
+        // U = eta0 u_e / (E' R)
+        (false, true) => {
+            s.positive("dimensionless_speed", "dimensionless")?.expect("present") * e_red * r / eta0
+        }
+    };
+    let srr = s.finite("slide_to_roll", "dimensionless")?.unwrap_or(0.0);
+    if srr.abs() > 2.0 {
+        return Err(s.err(
+            "slide_to_roll",
+            format!(
+                "SRR = (u1 - u2)/u_e lies between -2 and 2 while both surfaces move in the entrainment direction (2: body 2 at rest); found {}",
+                fmt_num(srr)
+            ),
+        ));
+    }
+    let travel = match s.table("travel", "the travel of the features: { from, to, steps }")? {
+        None => false,
+        Some(tt) => {
+            let key = s.key("travel");
+            let p = Sec {
+                file: s.file,
+                path: &key,
+                table: tt,
+            };
+            let from = required(
+                p.finite("from", "m")?,
+                &p,
+                "from",
+                "the start position x_p in m",
+            )?;
+            let to = required(p.finite("to", "m")?, &p, "to", "the end position x_p in m")?;
+            required(
+                p.count("steps", "time steps", 1)?,
+                &p,
+                "steps",
+                "the number of time steps, e.g. steps = 200",
+            )?;
+            if from == to {
+                return Err(p.err("to", "must differ from motion.travel.from"));
+            }
+            true
+        }
+    };
+    Ok((
+        Motion {
+            entrainment_speed: u_e,
+            slide_to_roll: srr,
+        },
+        travel,
+    ))
+}
+
+/// `[alignment]`.
+fn alignment(top: &Sec, point: bool) -> R<Alignment> {
+    let Some(t) = sub(top, "alignment", "tilt and skew in rad")? else {
+        return Ok(Alignment::default());
+    };
+    let s = Sec {
+        file: top.file,
+        path: "alignment",
+        table: t,
+    };
+    let mut a = Alignment::default();
+    for (k, slot) in [("tilt", &mut a.tilt), ("skew", &mut a.skew)] {
+        let v = s.finite(k, "rad")?.unwrap_or(0.0);
+        if v.abs() >= FRAC_PI_2 {
+            return Err(s.err(
+                k,
+                format!(
+                    "a misalignment angle must be smaller than pi/2 rad in size, found {}",
+                    fmt_num(v)
+                ),
+            ));
+        }
+        if point && v != 0.0 {
+            return Err(s.err(
+                k,
+                "misalignment applies to rollers; a ball contact has no axis to tilt or skew",
+            ));
+        }
+        *slot = v;
+    }
+    Ok(a)
+}
+
+/// `[grid]`, in units of the Hertz half-width `b` (contact radius a for balls).
+fn grid(top: &Sec, kind: Kind, c: Contact, b: f64) -> R<GridSpec> {
+    let empty = Table::new();
+    let t = sub(top, "grid", "cell counts and extents")?.unwrap_or(&empty);
+    let s = Sec {
+        file: top.file,
+        path: "grid",
+        table: t,
+    };
+    let (half, width) = match c {
+        Contact::Point { .. } => ("a", "contact diameter 2a"),
+        _ => ("b", "contact width 2b"),
+    };
+    let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
+    let nx = s.count("nx", "cells along x", 1)?.unwrap_or(DEFAULT_CELLS);
+    let x_min = s
+        .finite("x_min", "Hertz half-widths")?
+        .unwrap_or(if kind == Kind::Dry { -1.5 } else { -4.0 });
+    let x_max = s.finite("x_max", "Hertz half-widths")?.unwrap_or(1.5);
+    let bstr = format!("{half} = {} mm", mm(b));
+    if x_min >= x_max {
+        return Err(s.err(
+            "x_max",
+            format!(
+                "must be greater than grid.x_min; found x_min = {} and x_max = {} (both in Hertz half-widths, {bstr})",
+                fmt_num(x_min),
+                fmt_num(x_max)
+            ),
+        ));
+    }
+    if x_min > -1.0 {
+        return Err(s.err(
+            "x_min",
+            format!("the grid must contain the whole Hertz contact, x from -{half} to {half}: x_min is in Hertz half-widths ({bstr}) and must be -1 or less, found {}", fmt_num(x_min)),
+        ));
+    }
+    if x_max < 1.0 {
+        return Err(s.err(
+            "x_max",
+            format!("the grid must contain the whole Hertz contact, x from -{half} to {half}: x_max is in Hertz half-widths ({bstr}) and must be 1 or more, found {}", fmt_num(x_max)),
+        ));
+    }
+    let across = 2.0 * nx as f64 / (x_max - x_min);
+    if across < MIN_CELLS_ACROSS_CONTACT {
+        let need = (MIN_CELLS_ACROSS_CONTACT * (x_max - x_min) / 2.0).ceil();
+        return Err(s.err(
+            "nx",
+            format!(
+                "grid too coarse to resolve the Hertz contact: nx = {nx} cells over x = {} .. {} {half} put only {:.1} cells across the Hertz {width} = {} mm; at least {} are needed. Raise grid.nx to {need} or more, or narrow x_min .. x_max",
+                fmt_num(x_min),
+                fmt_num(x_max),
+                across,
+                mm(2.0 * b),
+                MIN_CELLS_ACROSS_CONTACT
+            ),
+        ));
+    }
+
+    let (ny, y_min, y_max) = if infinite {
+        if let Some(ny) = s.int("ny", "cells along y")? {
+            if ny != 1 {
+                return Err(s.err(
+                    "ny",
+                    format!("an infinite line contact (length = inf) is solved in 1D: grid.ny must be 1 or left out, found {ny}"),
+                ));
+            }
+        }
+        for k in ["y_min", "y_max"] {
+            forbid(&s, k, "is not used for an infinite line contact (length = inf, solved in 1D); leave it out")?;
+        }
+        // the 1 m reference length of the library's convention, in units of b
+        (1, -0.5 / b, 0.5 / b)
+    } else {
+        let ny = s.count("ny", "cells along y", 2)?.unwrap_or(DEFAULT_CELLS);
+        let (dlo, dhi) = match c {
+            Contact::Line { ulo, uhi, .. } => (ulo / b, uhi / b),
+            Contact::Point { .. } => (-3.0, 3.0),
+        };
+        let y_min = s.finite("y_min", "Hertz half-widths")?.unwrap_or(dlo);
+        let y_max = s.finite("y_max", "Hertz half-widths")?.unwrap_or(dhi);
+        if y_min >= y_max {
+            return Err(s.err(
+                "y_max",
+                format!(
+                    "must be greater than grid.y_min; found y_min = {} and y_max = {} (both in Hertz half-widths, {bstr})",
+                    fmt_num(y_min),
+                    fmt_num(y_max)
+                ),
+            ));
+        }
+        match c {
+            Contact::Line { lo, hi, len, .. } => {
+                let tol = 1e-9 * len / b;
+                if y_min > lo / b + tol || y_max < hi / b - tol {
+                    let k = if y_min > lo / b + tol {
+                        "y_min"
+                    } else {
+                        "y_max"
+                    };
+                    return Err(s.err(
+                        k,
+                        format!(
+                            "the grid must cover the whole contact length: the rollers touch over y = {} .. {} mm = {} .. {} b ({bstr}), but the grid covers y = {} .. {} b",
+                            mm(lo), mm(hi), fmt_num(lo / b), fmt_num(hi / b), fmt_num(y_min), fmt_num(y_max)
+                        ),
+                    ));
+                }
+                let along = ny as f64 * (len / b) / (y_max - y_min);
+                if along < MIN_CELLS_ACROSS_CONTACT {
+                    return Err(s.err(
+                        "ny",
+                        format!(
+                            "grid too coarse along the roller: ny = {ny} cells over y = {} .. {} b put only {:.1} cells along the contact length {} mm; at least {} are needed",
+                            fmt_num(y_min), fmt_num(y_max), along, mm(len), MIN_CELLS_ACROSS_CONTACT
+                        ),
+                    ));
+                }
+            }
+            Contact::Point { .. } => {
+                if y_min > -1.0 || y_max < 1.0 {
+                    let k = if y_min > -1.0 { "y_min" } else { "y_max" };
+                    return Err(s.err(
+                        k,
+                        format!("the grid must contain the whole Hertz contact, y from -a to a: y_min must be -1 or less and y_max 1 or more (in contact radii, {bstr}); found {} .. {}", fmt_num(y_min), fmt_num(y_max)),
+                    ));
+                }
+                let across = 2.0 * ny as f64 / (y_max - y_min);
+                if across < MIN_CELLS_ACROSS_CONTACT {
+                    let need = (MIN_CELLS_ACROSS_CONTACT * (y_max - y_min) / 2.0).ceil();
+                    return Err(s.err(
+                        "ny",
+                        format!(
+                            "grid too coarse to resolve the Hertz contact: ny = {ny} cells over y = {} .. {} a put only {:.1} cells across the Hertz contact diameter 2a = {} mm; at least {} are needed. Raise grid.ny to {need} or more",
+                            fmt_num(y_min), fmt_num(y_max), across, mm(2.0 * b), MIN_CELLS_ACROSS_CONTACT
+                        ),
+                    ));
+                }
+            }
+        }
+        (ny, y_min, y_max)
+    };
+    if nx.saturating_mul(ny) > MAX_CELLS {
+        return Err(s.err(
+            "nx",
+            format!("nx * ny = {nx} * {ny} cells is more than the {MAX_CELLS} cells (0.5 GB per field) this program accepts"),
+        ));
+    }
+    Ok(GridSpec {
+        nx,
+        ny,
+        x_min,
+        x_max,
+        y_min,
+        y_max,
+    })
+}
+
+/// `[solver]`.
+fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
+    let empty = Table::new();
+    let t = sub(top, "solver", "solver settings")?.unwrap_or(&empty);
+    let s = Sec {
+        file: top.file,
+        path: "solver",
+        table: t,
+    };
+    let tolerance = s.positive("tolerance", "relative")?.unwrap_or(1e-6);
+    if tolerance >= 1.0 {
+        return Err(s.err(
+            "tolerance",
+            format!(
+                "a relative tolerance must be below 1 (e.g. 1e-6), found {}",
+                fmt_num(tolerance)
+            ),
+        ));
+    }
+    Ok(SolverSpec {
+        tolerance,
+        max_iterations: s
+            .count("max_iterations", "iterations", 1)?
+            .unwrap_or(match kind {
+                Kind::Dry => DEFAULT_DRY_ITERATIONS,
+                Kind::Ehl => DEFAULT_EHL_ITERATIONS,
+            }),
+        mirror_levels: s
+            .count("mirror_levels", "mirror levels at each roller end", 0)?
+            .unwrap_or(1),
+        free_end_correction: s.boolean("free_end_correction")?.unwrap_or(true),
+    })
+}
+
+/// `[[features]]`: validated, then checked to lie inside the grid. Returns whether any exist.
+fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<bool> {
+    let Some(v) = top.get("features") else {
+        return Ok(false);
+    };
+    let items = match v {
+        Value::Array(items) => items,
+        Value::Table(_) => {
+            return Err(top.err(
+                "features",
+                "write each feature as its own [[features]] table (double brackets: an array of tables)",
+            ))
+        }
+        other => {
+            return Err(top.err(
+                "features",
+                format!("expected [[features]] tables, found {}", describe(other)),
+            ))
+        }
+    };
+    let (xlo, xhi) = (g.x_min * b, g.x_max * b);
+    let (ylo, yhi) = (g.y_min * b, g.y_max * b);
+    for (i, item) in items.iter().enumerate() {
+        let path = format!("features[{i}]");
+        let Value::Table(t) = item else {
+            return Err(case_err(
+                top.file,
+                &path,
+                format!("expected a [[features]] table, found {}", describe(item)),
+            ));
+        };
+        let s = Sec {
+            file: top.file,
+            path: &path,
+            table: t,
+        };
+        let kind = required(
+            s.choice("kind", FEATURE_KINDS)?,
+            &s,
+            "kind",
+            "the feature kind: \"pit\", \"dent\" or \"height-map\"",
+        )?;
+        if let Some(body) = s.int("body", "1 or 2")? {
+            if body != 1 && body != 2 {
+                return Err(s.err(
+                    "body",
+                    format!("must be 1 or 2 (the body that carries the feature), found {body}"),
+                ));
+            }
+        }
+        let x = s.finite("x", "m")?.unwrap_or(0.0);
+        let y = s.finite("y", "m")?.unwrap_or(0.0);
+        let (w, l) = if kind == "height-map" {
+            for k in ["width", "length", "depth", "pattern"] {
+                forbid(
+                    &s,
+                    k,
+                    "is not used by a height-map feature (it has file, dx, dy, x, y)",
+                )?;
+            }
+            required(
+                s.string("file", "path of a .npy height map")?,
+                &s,
+                "file",
+                "the height map file (.npy, heights in m)",
+            )?;
+            required(
+                s.positive("dx", "m")?,
+                &s,
+                "dx",
+                "the height map's spacing along x in m",
+            )?;
+            required(
+                s.positive("dy", "m")?,
+                &s,
+                "dy",
+                "the height map's spacing along y in m",
+            )?;
+            (0.0, 0.0)
+        } else {
+            for k in ["file", "dx", "dy"] {
+                forbid(&s, k, "is only used by kind = \"height-map\"")?;
+            }
+            let w = required(
+                s.positive("width", "m")?,
+                &s,
+                "width",
+                "the feature's width along x in m",
+            )?;
+            let l = required(
+                s.positive("length", "m")?,
+                &s,
+                "length",
+                "the feature's length along y in m",
+            )?;
+            required(
+                s.positive("depth", "m")?,
+                &s,
+                "depth",
+                "the feature's depth in m",
+            )?;
+            (w, l)
+        };
+        let (mut hx, mut hy) = (0.5 * w, 0.5 * l);
+        if let Some(pt) = s.table("pattern", "{ rows, columns, row_pitch, column_pitch }")? {
+            let key = s.key("pattern");
+            let p = Sec {
+                file: top.file,
+                path: &key,
+                table: pt,
+            };
+            let rows = p.count("rows", "features along x", 1)?.unwrap_or(1);
+            let cols = p.count("columns", "features along y", 1)?.unwrap_or(1);
+            let rp = p.positive("row_pitch", "m")?;
+            let cp = p.positive("column_pitch", "m")?;
+            if rows > 1 && rp.is_none() {
+                return Err(p.missing(
+                    "row_pitch",
+                    "the centre-to-centre spacing of the rows along x in m",
+                ));
+            }
+            if cols > 1 && cp.is_none() {
+                return Err(p.missing(
+                    "column_pitch",
+                    "the centre-to-centre spacing of the columns along y in m",
+                ));
+            }
+            hx += 0.5 * (rows - 1) as f64 * rp.unwrap_or(0.0);
+            hy += 0.5 * (cols - 1) as f64 * cp.unwrap_or(0.0);
+        }
+        if !travel && (x - hx < xlo || x + hx > xhi) {
+            return Err(s.err(
+                "x",
+                format!(
+                    "the feature lies outside the grid: it spans x = {} .. {} mm but the grid covers x = {} .. {} mm (grid.x_min .. x_max = {} .. {} Hertz half-widths of {} mm)",
+                    mm(x - hx), mm(x + hx), mm(xlo), mm(xhi), fmt_num(g.x_min), fmt_num(g.x_max), mm(b)
+                ),
+            ));
+        }
+        if !infinite && (y - hy < ylo || y + hy > yhi) {
+            return Err(s.err(
+                "y",
+                format!(
+                    "the feature lies outside the grid: it spans y = {} .. {} mm but the grid covers y = {} .. {} mm",
+                    mm(y - hy), mm(y + hy), mm(ylo), mm(yhi)
+                ),
+            ));
+        }
+    }
+    Ok(!items.is_empty())
+}
+
+/// Validates the whole tree (unknown keys already rejected) into a [`Case`].
+pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
+    let top = Sec {
+        file,
+        path: "",
+        table: root,
+    };
+    let title = top.string("title", "free text")?.unwrap_or("").to_string();
+    let kind = match top.choice("kind", &["dry", "ehl"])? {
+        Some("dry") => Kind::Dry,
+        Some(_) => Kind::Ehl,
+        None => {
+            return Err(top.missing(
+                "kind",
+                "kind = \"dry\" (contact without lubricant) or kind = \"ehl\" (lubricated)",
+            ))
+        }
+    };
+    let body1 = body(&top, "body1")?;
+    let body2 = body(&top, "body2")?;
+    let c = contact(&top, &body1, &body2)?;
+    let e_red = units::reduced_modulus(
+        body1.youngs_modulus,
+        body1.poisson_ratio,
+        body2.youngs_modulus,
+        body2.poisson_ratio,
+    );
+    let r = units::reduced_radius(body1.radius, body2.radius);
+    let alignment = alignment(&top, matches!(c, Contact::Point { .. }))?;
+    let (load, b) = load(&top, c, r, e_red)?;
+
+    let (motion, lubricant, travel) = if kind == Kind::Ehl {
+        for (k, what) in [
+            ("motion", "a [motion] table for kind = \"ehl\" (entrainment_speed in m/s, slide_to_roll)"),
+            ("lubricant", "a [lubricant] table for kind = \"ehl\" (viscosity, pressure_viscosity_coefficient, density)"),
+        ] {
+            if !top.has(k) {
+                return Err(top.missing(k, what));
+            }
+        }
+        let lub = lubricant(&top, e_red)?;
+        let (m, travel) = motion(&top, e_red, r, lub.viscosity)?;
+        (Some(m), Some(lub), travel)
+    } else {
+        (None, None, false)
+    };
+
+    let grid = grid(&top, kind, c, b)?;
+    let solver = solver(&top, kind)?;
+    let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
+    if features(&top, &grid, b, infinite, travel)? {
+        return Err(Error::Unsupported {
+            file: file.to_string(),
+            key: "features".into(),
+            message: "surface features are not built yet; remove the [[features]] tables to solve the smooth contact".into(),
+        });
+    }
+    if travel {
+        return Err(Error::Unsupported {
+            file: file.to_string(),
+            key: "motion.travel".into(),
+            message:
+                "transient runs are not built yet; remove motion.travel to solve the steady case"
+                    .into(),
+        });
+    }
+    Ok(Case {
+        title,
+        kind,
+        body1,
+        body2,
+        alignment,
+        load,
+        motion,
+        lubricant,
+        grid,
+        solver,
+    })
+}

@@ -1,0 +1,390 @@
+//! Resolution of cases: defaults, load forms, dimensionless forms, overrides.
+//! Expected values are recomputed here from the textbook formulas (not through `units`) so that
+//! a slip in either place shows; tolerances are round-off (1e-12 relative) unless stated.
+
+use super::*;
+use std::f64::consts::PI;
+
+const ROLLERS: &str = r#"
+kind = "dry"
+[body1]
+shape = "roller"
+radius = 0.01
+length = 4e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[body2]
+shape = "roller"
+radius = 0.01
+length = 4e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[load]
+force = 30000.0
+"#;
+
+const EHL: &str = r#"
+kind = "ehl"
+[body1]
+shape = "roller"
+radius = 0.06
+length = 9.5e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[body2]
+shape = "roller"
+radius = 0.06
+length = 9.5e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[load]
+force = 6000.0
+[motion]
+entrainment_speed = 2.7
+[lubricant]
+viscosity = 0.04
+pressure_viscosity_coefficient = 15.9e-9
+density = 846.0
+"#;
+
+const BALL: &str = r#"
+kind = "dry"
+[body1]
+shape = "ball"
+radius = 0.0125
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+[body2]
+shape = "flat"
+youngs_modulus = 70e9
+poisson_ratio = 0.2
+[load]
+force = 15.0
+"#;
+
+/// E' for two steels E = 200 GPa, nu = 0.3: 2 / (2 (1 - 0.09) / 200e9) = 200e9 / 0.91.
+const E_STEEL: f64 = 200e9 / 0.91;
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(f64::MIN_POSITIVE)
+}
+
+fn parse(text: &str, sets: &[&str]) -> Result<Case> {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    parse_str(text, "case.toml", &sets)
+}
+
+fn err(text: &str, sets: &[&str]) -> (String, String) {
+    match parse(text, sets) {
+        Err(Error::Case { key, message, .. }) | Err(Error::Unsupported { key, message, .. }) => {
+            (key, message)
+        }
+        other => panic!("expected a case error, got {other:?}"),
+    }
+}
+
+#[test]
+fn dry_roller_defaults() {
+    let c = parse(ROLLERS, &[]).unwrap();
+    assert_eq!(c.title, "");
+    assert_eq!(c.kind, Kind::Dry);
+    assert_eq!(c.body1.profile, Profile::Straight);
+    assert_eq!(c.body1.radius_y, f64::INFINITY);
+    assert_eq!(c.body2.axial_offset, 0.0);
+    assert_eq!(c.alignment, Alignment::default());
+    assert!(c.motion.is_none() && c.lubricant.is_none());
+    assert_eq!((c.grid.nx, c.grid.ny), (128, 128));
+    assert_eq!((c.grid.x_min, c.grid.x_max), (-1.5, 1.5));
+    assert_eq!(c.solver.tolerance, 1e-6);
+    assert_eq!(c.solver.max_iterations, DEFAULT_DRY_ITERATIONS);
+    assert_eq!(c.solver.mirror_levels, 1);
+    assert!(c.solver.free_end_correction);
+    // w' = F/L, R = 5 mm, b = sqrt(8 w' R / (pi E')); y extents = the roller, +-L/2 in b
+    let w = 30000.0 / 4e-3;
+    let b = (8.0 * w * 0.005 / (PI * E_STEEL)).sqrt();
+    assert!(close(c.load.force_per_length, w, 1e-12));
+    assert!(
+        close(c.grid.y_max, 2e-3 / b, 1e-12),
+        "{} vs {}",
+        c.grid.y_max,
+        2e-3 / b
+    );
+    assert!(close(c.grid.y_min, -2e-3 / b, 1e-12));
+    assert!(!c.is_infinite_line() && !c.is_point());
+}
+
+#[test]
+fn ehl_defaults() {
+    let c = parse(EHL, &[]).unwrap();
+    assert_eq!((c.grid.x_min, c.grid.x_max), (-4.0, 1.5));
+    assert_eq!(c.solver.max_iterations, DEFAULT_EHL_ITERATIONS);
+    let m = c.motion.unwrap();
+    assert_eq!((m.entrainment_speed, m.slide_to_roll), (2.7, 0.0));
+    let l = c.lubricant.unwrap();
+    assert_eq!(l.viscosity_model, ViscosityModel::Roelands);
+    assert_eq!(l.density_model, DensityModel::DowsonHigginson);
+    assert_eq!(l.rheology, Rheology::Newtonian);
+}
+
+#[test]
+fn dry_ignores_motion_and_lubricant() {
+    let c = parse(EHL, &["kind=dry", "motion.entrainment_speed=-1"]).unwrap();
+    assert!(c.motion.is_none() && c.lubricant.is_none());
+    // but a misspelt key in an ignored table is still an error
+    let (k, m) = err(EHL, &["kind=dry", "motion.slide_to_rol=0.1"]);
+    assert_eq!(k, "motion.slide_to_rol");
+    assert!(m.contains("motion.slide_to_roll"), "{m}");
+}
+
+#[test]
+fn line_load_forms_agree() {
+    // the Hertz line pressure for w' = F/L is p_h = sqrt(w' E' / (2 pi R)) (Johnson eq. 4.45)
+    let f = 30000.0;
+    let w = f / 4e-3;
+    let ph = (w * E_STEEL / (2.0 * PI * 0.005)).sqrt();
+    let by_force = parse(ROLLERS, &[]).unwrap();
+    let by_ph = parse(ROLLERS, &[&format!("load={{ max_hertz_pressure = {ph} }}")]).unwrap();
+    let by_w = parse(ROLLERS, &[&format!("load={{ force_per_length = {w} }}")]).unwrap();
+    // W = w'/(E' R)
+    let big_w = w / (E_STEEL * 0.005);
+    let by_dim = parse(
+        ROLLERS,
+        &[&format!("load={{ dimensionless_load = {big_w} }}")],
+    )
+    .unwrap();
+    for c in [&by_ph, &by_w, &by_dim] {
+        assert!(close(c.load.force, f, 1e-12), "{} vs {f}", c.load.force);
+        assert!(close(c.load.force_per_length, w, 1e-12));
+        assert_eq!(c.grid, by_force.grid);
+    }
+}
+
+#[test]
+fn unequal_rollers_use_overlap_and_union() {
+    // body1 spans -2..2 mm, body2 (6 mm long, shifted by 2 mm) spans -1..5 mm:
+    // overlap -1..2 mm = 3 mm carries the load; the grid spans the union -2..5 mm.
+    let c = parse(
+        ROLLERS,
+        &[
+            "body2.length=6e-3",
+            "body2.axial_offset=2e-3",
+            "body2.radius=0.02",
+        ],
+    )
+    .unwrap();
+    let w = 30000.0 / 3e-3;
+    assert!(close(c.load.force_per_length, w, 1e-12));
+    let r = 1.0 / (1.0 / 0.01 + 1.0 / 0.02);
+    let b = (8.0 * w * r / (PI * E_STEEL)).sqrt();
+    assert!(close(c.grid.y_min, -2e-3 / b, 1e-12));
+    assert!(close(c.grid.y_max, 5e-3 / b, 1e-12));
+    assert!(close(c.reduced_radius(), r, 1e-12));
+    // no overlap at all
+    let (k, m) = err(ROLLERS, &["body2.axial_offset=5e-3"]);
+    assert_eq!(k, "body2.axial_offset");
+    assert!(m.contains("do not overlap"), "{m}");
+}
+
+#[test]
+fn roller_on_flat_and_infinite_line() {
+    let text = ROLLERS.replace(
+        "[body2]\nshape = \"roller\"\nradius = 0.01\nlength = 4e-3\n",
+        "[body2]\nshape = \"flat\"\n",
+    );
+    let c = parse(&text, &[]).unwrap();
+    assert_eq!(c.body2.radius, f64::INFINITY);
+    assert_eq!(c.body2.length, f64::INFINITY);
+    assert!(close(c.reduced_radius(), 0.01, 1e-12));
+    assert!(close(c.load.force_per_length, 30000.0 / 4e-3, 1e-12));
+
+    let c = parse(
+        &text,
+        &["body1.length=inf", "load={ force_per_length = 1e6 }"],
+    )
+    .unwrap();
+    assert!(c.is_infinite_line());
+    let b = (8.0 * 1e6 * 0.01 / (PI * E_STEEL)).sqrt();
+    assert_eq!(c.grid.ny, 1);
+    // the 1 m reference strip: y from -0.5 m to 0.5 m
+    assert!(close(c.grid.y_min * b, -0.5, 1e-12) && close(c.grid.y_max * b, 0.5, 1e-12));
+    assert!(close(c.load.force, 1e6, 1e-12));
+    let (k, m) = err(&text, &["body1.length=inf"]);
+    assert_eq!(k, "load.force");
+    assert!(m.contains("force_per_length"), "{m}");
+    let (k, _) = err(
+        &text,
+        &[
+            "body1.length=inf",
+            "load={ force_per_length = 1e6 }",
+            "grid.ny=64",
+        ],
+    );
+    assert_eq!(k, "grid.ny");
+}
+
+#[test]
+fn ball_load_forms() {
+    // E' = 2/((1-0.09)/210e9 + (1-0.04)/70e9); a = (3 F R / (2 E'))^(1/3); p0 = 3F/(2 pi a^2)
+    let e = 2.0 / ((1.0 - 0.09) / 210e9 + (1.0 - 0.04) / 70e9);
+    let (f, r) = (15.0_f64, 0.0125_f64);
+    let a = (3.0 * f * r / (2.0 * e)).cbrt();
+    let p0 = 3.0 * f / (2.0 * PI * a * a);
+    let c = parse(BALL, &[]).unwrap();
+    assert!(c.is_point());
+    assert_eq!(c.body1.radius_y, 0.0125);
+    assert_eq!((c.grid.y_min, c.grid.y_max), (-3.0, 3.0));
+    assert!(close(c.load.force_per_length, f / (2.0 * a), 1e-12));
+    let by_p = parse(BALL, &[&format!("load={{ max_hertz_pressure = {p0} }}")]).unwrap();
+    assert!(close(by_p.load.force, f, 1e-12), "{}", by_p.load.force);
+    // W = F / (E' R^2)
+    let by_w = parse(
+        BALL,
+        &[&format!(
+            "load={{ dimensionless_load = {} }}",
+            f / (e * r * r)
+        )],
+    )
+    .unwrap();
+    assert!(close(by_w.load.force, f, 1e-12));
+    // elliptical: the pressure form is not built yet, force is fine
+    let (k, _) = err(
+        BALL,
+        &[
+            "body1.radius_y=0.02",
+            &format!("load={{ max_hertz_pressure = {p0} }}"),
+        ],
+    );
+    assert_eq!(k, "load.max_hertz_pressure");
+    assert_eq!(
+        parse(BALL, &["body1.radius_y=0.02"])
+            .unwrap()
+            .body1
+            .radius_y,
+        0.02
+    );
+    let (k, _) = err(BALL, &["load={ force_per_length = 1e5 }"]);
+    assert_eq!(k, "load.force_per_length");
+}
+
+#[test]
+fn dimensionless_speed_and_material() {
+    // u_e = U E' R / eta0, alpha = G / E'
+    let r = 0.03;
+    let u = 2.7 * 0.04 / (E_STEEL * r);
+    let g = 15.9e-9 * E_STEEL;
+    let c = parse(
+        EHL,
+        &[
+            &format!("motion={{ dimensionless_speed = {u} }}"),
+            &format!(
+                "lubricant={{ viscosity = 0.04, dimensionless_material = {g}, density = 846.0 }}"
+            ),
+        ],
+    )
+    .unwrap();
+    assert!(close(c.motion.unwrap().entrainment_speed, 2.7, 1e-12));
+    assert!(close(
+        c.lubricant.unwrap().pressure_viscosity_coefficient,
+        15.9e-9,
+        1e-12
+    ));
+}
+
+#[test]
+fn overrides_apply_before_validation() {
+    // a bad value in the file is fixed by --set
+    let bad = ROLLERS.replace("force = 30000.0", "force = -1.0");
+    assert!(parse(&bad, &[]).is_err());
+    assert_eq!(
+        parse(&bad, &["load.force=5000"]).unwrap().load.force,
+        5000.0
+    );
+    let c = parse(
+        ROLLERS,
+        &[
+            "title=\"my case\"",
+            "body1.profile={ kind = \"crowned\", crown_radius = 0.5 }",
+            "solver.free_end_correction=false",
+            "grid.nx=64",
+        ],
+    )
+    .unwrap();
+    assert_eq!(c.title, "my case");
+    assert_eq!(c.body1.profile, Profile::Crowned { crown_radius: 0.5 });
+    assert!(!c.solver.free_end_correction);
+    assert_eq!(c.grid.nx, 64);
+    let (k, m) = err(ROLLERS, &["load.forse=5000"]);
+    assert_eq!(k, "load.forse");
+    assert!(m.contains("did you mean `load.force`"), "{m}");
+}
+
+#[test]
+fn rheology_and_profiles() {
+    let c = parse(
+        EHL,
+        &["lubricant.rheology={ model = \"carreau\", shear_modulus = 4.5e6, power_law_index = 0.57 }"],
+    )
+    .unwrap();
+    assert_eq!(
+        c.lubricant.unwrap().rheology,
+        Rheology::Carreau {
+            shear_modulus: 4.5e6,
+            power_law_index: 0.57,
+            limiting_shear_coefficient: None
+        }
+    );
+    let (k, m) = err(
+        EHL,
+        &["lubricant.rheology={ model = \"eyring\", shear_modulus = 4.5e6 }"],
+    );
+    assert_eq!(k, "lubricant.rheology.shear_modulus");
+    assert!(m.contains("eyring_stress"), "{m}");
+    let (k, _) = err(
+        ROLLERS,
+        &["body1.profile={ kind = \"chamfer\", edge_length = 3e-3, angle = 0.01 }"],
+    );
+    assert_eq!(k, "body1.profile.edge_length");
+    let (k, m) = err(ROLLERS, &["body1.profile=\"crowned\""]);
+    assert_eq!(k, "body1.profile");
+    assert!(m.contains("crown_radius"), "{m}");
+}
+
+#[test]
+fn features_checked_then_refused() {
+    let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\n";
+    let (k, m) = err(&(ROLLERS.to_string() + pit), &[]);
+    assert_eq!(k, "features");
+    assert!(m.contains("not built yet"), "{m}");
+    let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].x=0.01"]);
+    assert_eq!(k, "features[0].x");
+    assert!(m.contains("outside the grid"), "{m}");
+    let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].y=-0.0019"]);
+    assert_eq!(k, "features[0].y");
+}
+
+#[test]
+fn body_pairs() {
+    let (k, m) = err(
+        BALL,
+        &[
+            "body2={ shape = \"flat\", youngs_modulus = 1e9, poisson_ratio = 0.3 }",
+            "body1={ shape = \"flat\", youngs_modulus = 1e9, poisson_ratio = 0.3 }",
+        ],
+    );
+    assert_eq!(k, "body2.shape");
+    assert!(m.contains("two flats"), "{m}");
+    match parse(
+        ROLLERS,
+        &["body2={ shape = \"ball\", radius = 0.01, youngs_modulus = 1e9, poisson_ratio = 0.3 }"],
+    ) {
+        Err(Error::Unsupported { key, .. }) => assert_eq!(key, "body1.shape"),
+        other => panic!("{other:?}"),
+    }
+    // ball on ball: 1/R = 1/R1 + 1/R2
+    let c = parse(BALL, &["body2={ shape = \"ball\", radius = 0.0125, youngs_modulus = 70e9, poisson_ratio = 0.2 }"]).unwrap();
+    assert!(close(c.reduced_radius(), 0.00625, 1e-12));
+    let (k, _) = err(BALL, &["alignment.tilt=0.01"]);
+    assert_eq!(k, "alignment.tilt");
+    let (k, _) = err(BALL, &["body2.axial_offset=0.001"]);
+    assert_eq!(k, "body2.axial_offset");
+}

@@ -1,0 +1,191 @@
+//! Rheology: the shear stress of the lubricant film as a function of the shear rate, for a given
+//! low-shear (pressure-dependent) viscosity eta(p) (isothermal).
+//!
+//! Models ([`Rheology`], from `[lubricant] rheology` in the case file):
+//!
+//! * Newtonian (thesis eq. 2.12): tau = eta gamma_dot;
+//! * Carreau (Carreau 1972; in EHL form thesis eq. 2.15 after Guilbault 2013):
+//!   eta_eff = eta [1 + (eta gamma_dot / G_f)^2]^((n - 1)/2), tau = eta_eff gamma_dot;
+//! * Eyring (Eyring 1936; the sinh law of Johnson & Tevaarwerk 1977):
+//!   tau = tau_0 asinh(eta gamma_dot / tau_0).
+//!
+//! Carreau and Eyring take an optional limiting shear stress (Bair & Winer 1979; thesis
+//! eq. 2.13-2.14), tau_L = Lambda p, which caps |tau|: this is the `min` of eq. 2.15,
+//! eta = min[eta_Carreau, tau_L / gamma_dot]. Carreau with n = 1 and a limit is the Newtonian
+//! law with a limiting shear stress of eq. 2.13.
+//!
+//! Units: eta in Pa s, gamma_dot in 1/s (signed), p in Pa, tau in Pa (signed like gamma_dot).
+//! Negative pressure is treated as ambient (p = 0), like the other lubricant laws, so that with a
+//! limit a cavitated or ambient-pressure film carries no shear stress (tau_L = Lambda * 0 = 0, the
+//! literal reading of eq. 2.14; real lubricants have a small ambient intercept which the case
+//! format does not model).
+//!
+//! Preconditions (checked by the case validation, not here): eta >= 0, G_f > 0, n > 0,
+//! tau_0 > 0, Lambda >= 0, all finite. With them and a finite shear rate the functions below
+//! never return NaN.
+
+use crate::case::Rheology;
+
+/// Limiting shear stress tau_L = Lambda max(p, 0) (Pa) of thesis eq. 2.14 (Bair & Winer 1979),
+/// or `None` when the model has no limit (Newtonian, or Carreau/Eyring without
+/// `limiting_shear_coefficient`).
+pub fn limiting_shear_stress(model: &Rheology, p: f64) -> Option<f64> {
+    let lambda = match model {
+        Rheology::Newtonian => None,
+        Rheology::Carreau {
+            limiting_shear_coefficient,
+            ..
+        }
+        | Rheology::Eyring {
+            limiting_shear_coefficient,
+            ..
+        } => *limiting_shear_coefficient,
+    }?;
+    Some(lambda * p.max(0.0))
+}
+
+/// The shear stress before the limit is applied (Pa, signed like `shear_rate`).
+///
+/// * Newtonian: eta gamma_dot (eq. 2.12);
+/// * Carreau: G_f x [1 + x^2]^((n-1)/2) with x = eta gamma_dot / G_f, i.e. eta gamma_dot times the
+///   Carreau factor of eq. 2.15; written with `hypot(1, x)` so that it neither overflows nor
+///   underflows at large x (where it tends to the power law G_f x^n);
+/// * Eyring: tau_0 asinh(eta gamma_dot / tau_0).
+fn unlimited_shear_stress(model: &Rheology, eta: f64, shear_rate: f64) -> f64 {
+    let newtonian = eta * shear_rate;
+    match *model {
+        Rheology::Newtonian => newtonian,
+        Rheology::Carreau {
+            shear_modulus,
+            power_law_index,
+            ..
+        } => {
+            if newtonian == 0.0 {
+                return 0.0;
+            }
+            let x = newtonian / shear_modulus;
+            shear_modulus * x * x.abs().hypot(1.0).powf(power_law_index - 1.0)
+        }
+        Rheology::Eyring { eyring_stress, .. } => {
+            eyring_stress * (newtonian / eyring_stress).asinh()
+        }
+    }
+}
+
+/// Shear stress tau (Pa, signed like `shear_rate`) of the film at shear rate `shear_rate` (1/s)
+/// for the low-shear viscosity `eta` (Pa s) at pressure `p` (Pa).
+///
+/// tau = tau_model(eta, gamma_dot) (see the module documentation: thesis eq. 2.12, Carreau
+/// eq. 2.15, Eyring), then, when the model has a limiting shear coefficient Lambda,
+/// |tau| <= tau_L = Lambda max(p, 0) (thesis eq. 2.13-2.14). tau is odd in `shear_rate` and
+/// non-decreasing in it.
+pub fn shear_stress(model: &Rheology, eta: f64, shear_rate: f64, p: f64) -> f64 {
+    let limit = limiting_shear_stress(model, p);
+    if let Some(tau_l) = limit {
+        if shear_rate.is_infinite() {
+            // the limit of tau as |gamma_dot| -> inf is the cap itself
+            return tau_l.copysign(shear_rate);
+        }
+    }
+    let tau = unlimited_shear_stress(model, eta, shear_rate);
+    match limit {
+        Some(tau_l) if tau.abs() > tau_l => tau_l.copysign(shear_rate),
+        _ => tau,
+    }
+}
+
+/// Effective viscosity eta_eff = tau / gamma_dot (Pa s) at shear rate `shear_rate` (1/s) for the
+/// low-shear viscosity `eta` (Pa s) at pressure `p` (Pa); the left side of thesis eq. 2.15.
+///
+/// At zero shear rate it returns the limit gamma_dot -> 0: `eta` for every model, except with a
+/// limiting shear stress at p <= 0, where tau_L = 0 makes eta_eff = 0.
+pub fn effective_viscosity(model: &Rheology, eta: f64, shear_rate: f64, p: f64) -> f64 {
+    if shear_rate == 0.0 {
+        return match limiting_shear_stress(model, p) {
+            Some(tau_l) if tau_l <= 0.0 => 0.0,
+            _ => eta,
+        };
+    }
+    shear_stress(model, eta, shear_rate, p) / shear_rate
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CARREAU: Rheology = Rheology::Carreau {
+        shear_modulus: 4.5e6,
+        power_law_index: 0.57,
+        limiting_shear_coefficient: None,
+    };
+
+    #[test]
+    fn newtonian_is_eta_gamma_dot() {
+        let m = Rheology::Newtonian;
+        assert_eq!(shear_stress(&m, 0.04, 1e6, 1e9), 4e4);
+        assert_eq!(shear_stress(&m, 0.04, -1e6, 1e9), -4e4);
+        assert_eq!(effective_viscosity(&m, 0.04, 3e5, 0.0), 0.04);
+        assert_eq!(effective_viscosity(&m, 0.04, 0.0, 0.0), 0.04);
+    }
+
+    #[test]
+    fn carreau_small_and_large_shear_rate_limits() {
+        // small x = eta gamma_dot / G: factor [1 + x^2]^((n-1)/2) = 1 + (n-1)/2 x^2 + O(x^4),
+        // so the relative deviation from Newtonian is (1-n)/2 x^2 to within x^4 (Taylor).
+        let (eta, g, n) = (0.04, 4.5e6, 0.57);
+        let gd = 1e-3 * g / eta; // x = 1e-3
+        let tau = shear_stress(&CARREAU, eta, gd, 0.0);
+        let dev = 1.0 - tau / (eta * gd);
+        assert!(
+            (dev / ((1.0 - n) / 2.0 * 1e-6) - 1.0).abs() < 1e-5,
+            "dev {dev}"
+        );
+        // large x: tau = G x^n (1 + 1/x^2)^((n-1)/2) -> G x^n; at x = 1e8 the relative
+        // difference is (1-n)/2 / x^2 ~ 2e-17, below round-off: compare to 1e-12 (powf
+        // round-off at this magnitude).
+        for &x in &[1e8, 1e20, 1e200] {
+            let tau = shear_stress(&CARREAU, eta, x * g / eta, 0.0);
+            let power_law = g * x.powf(n);
+            assert!(
+                (tau / power_law - 1.0).abs() < 1e-12,
+                "x {x}: {tau} vs {power_law}"
+            );
+        }
+    }
+
+    #[test]
+    fn eyring_small_and_large_stress_limits() {
+        let m = Rheology::Eyring {
+            eyring_stress: 5e6,
+            limiting_shear_coefficient: None,
+        };
+        // asinh(s)/s = 1 - s^2/6 + O(s^4): at s = 1e-3 the deviation is 1.667e-7 to 1e-12
+        let gd = 1e-3 * 5e6 / 0.04;
+        let dev = 1.0 - shear_stress(&m, 0.04, gd, 0.0) / (0.04 * gd);
+        assert!((dev / (1e-6 / 6.0) - 1.0).abs() < 1e-5, "dev {dev}");
+        // large s: asinh(s) = ln(2 s) + 1/(4 s^2) + ...; at s = 1e6 the correction is 2.5e-13
+        let s = 1e6;
+        let tau = shear_stress(&m, 0.04, s * 5e6 / 0.04, 0.0);
+        assert!((tau / (5e6 * (2.0 * s).ln()) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn limit_caps_the_stress_and_is_odd() {
+        let m = Rheology::Carreau {
+            shear_modulus: 4.5e6,
+            power_law_index: 0.57,
+            limiting_shear_coefficient: Some(0.06),
+        };
+        let p = 1e9;
+        assert_eq!(shear_stress(&m, 100.0, 1e9, p), 0.06 * p);
+        assert_eq!(shear_stress(&m, 100.0, -1e9, p), -0.06 * p);
+        assert_eq!(shear_stress(&m, 100.0, f64::INFINITY, p), 0.06 * p);
+        // below the limit the cap does nothing
+        let low = shear_stress(&CARREAU, 1e-3, 1.0, p);
+        assert_eq!(shear_stress(&m, 1e-3, 1.0, p), low);
+        // ambient or cavitated film: tau_L = 0
+        assert_eq!(shear_stress(&m, 0.04, 1e6, -5.0), 0.0);
+        assert_eq!(effective_viscosity(&m, 0.04, 0.0, 0.0), 0.0);
+        assert_eq!(effective_viscosity(&m, 0.04, 0.0, 1e6), 0.04);
+    }
+}

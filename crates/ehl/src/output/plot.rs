@@ -1,0 +1,1044 @@
+//! The pictures: `pressure.png`, `film.png`, `centerline.png` (1000 x 700 px, plotters bitmap
+//! backend, DejaVu Sans embedded so that no system font is needed).
+//!
+//! * `pressure.png`: a colour map of the pressure over the contact, x (rolling direction, inlet on
+//!   the left) horizontal and y (roller axis) vertical, both in mm, colour bar in GPa (inferno:
+//!   black = no pressure, pale yellow = maximum), the maximum marked with a cross. The axes are
+//!   scaled to fill the frame, not to scale: a roller contact is ~20 times longer than wide; the
+//!   stretch factor is printed under the map. An infinite line contact (`ny == 1`) has no map: the
+//!   pressure profile along x is drawn instead, with the dry Hertz profile as a dashed reference.
+//! * `film.png` (when the solution has a film): the same map of the film (gap after loading for
+//!   a dry contact), in µm, or nm when the film is below 1 µm (viridis: dark = thin), the minimum
+//!   marked with a circle. The film grows quickly outside the contact, so the colour scale covers
+//!   the film over the loaded zone (cells above 5 % of the maximum pressure) and saturates beyond;
+//!   the subtitle says where. Cells with no material are grey. `ny == 1`: the film profile.
+//! * `centerline.png`: pressure (GPa, left axis) and film (right axis, when present) along x at
+//!   the axial centre (the row nearest y = 0), with the dry Hertz pressure
+//!   `p_h sqrt(1 - (x/b)^2)` (`summary.hertz_pressure_pa`, `summary.hertz_half_width_m`) dashed.
+
+use super::colormap::ColorMap;
+use crate::case::{Case, Kind, Shape};
+use crate::grid::Grid;
+use crate::solution::Solution;
+use crate::{Error, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::ops::Range;
+use std::path::Path;
+use std::sync::OnceLock;
+
+/// Picture size (px).
+pub const WIDTH: u32 = 1000;
+pub const HEIGHT: u32 = 700;
+
+const FONT: &str = "sans-serif";
+static DEJAVU: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+
+type DrawResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
+/// Registers the embedded DejaVu Sans as plotters' "sans-serif" (once per process).
+fn ensure_font() -> std::result::Result<(), String> {
+    static DONE: OnceLock<std::result::Result<(), String>> = OnceLock::new();
+    DONE.get_or_init(|| {
+        for style in [FontStyle::Normal, FontStyle::Bold] {
+            plotters::style::register_font(FONT, style, DEJAVU)
+                .map_err(|_| "the embedded DejaVu Sans font is invalid".to_string())?;
+        }
+        Ok(())
+    })
+    .clone()
+}
+
+fn draw_err(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Output {
+        path: path.to_path_buf(),
+        message: format!("drawing the picture: {e}"),
+    }
+}
+
+fn render(
+    path: &Path,
+    f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
+) -> Result<()> {
+    ensure_font().map_err(|e| draw_err(path, e))?;
+    let root = BitMapBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
+    f(&root).map_err(|e| draw_err(path, e))?;
+    root.present().map_err(|e| draw_err(path, e))?;
+    // the backend reports encoder failures only on drop in some versions: check the file
+    drop(root);
+    match std::fs::metadata(path) {
+        Ok(m) if m.len() > 0 => Ok(()),
+        _ => Err(draw_err(path, "no picture was written")),
+    }
+}
+
+// ---------------------------------------------------------------- number formatting
+
+/// `v` with `sig` significant digits, no exponent (for values of order 1e-3 .. 1e4).
+pub fn fmt_sig(v: f64, sig: usize) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor() as i64;
+    let dec = (sig as i64 - 1 - mag).clamp(0, 12) as usize;
+    let s = format!("{v:.dec$}");
+    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
+
+/// A tick label for `v` on an axis spanning `span`: enough decimals for the tick step, trailing
+/// zeros trimmed ("0.25", "5", "-0.1").
+pub fn fmt_tick(v: f64, span: f64) -> String {
+    let dec = if span > 0.0 && span.is_finite() {
+        (2 - span.log10().floor() as i64).clamp(0, 12) as usize
+    } else {
+        3
+    };
+    let mut s = format!("{v:.dec$}");
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
+        }
+        if s.ends_with('.') {
+            s.pop();
+        }
+    }
+    if s == "-0" {
+        s = "0".into();
+    }
+    s
+}
+
+/// Display unit for a film or gap of typical size `h` (m): µm, or nm below 1 µm.
+pub fn film_unit(h: f64) -> (&'static str, f64) {
+    if h.abs() < 1e-6 {
+        ("nm", 1e9)
+    } else {
+        ("µm", 1e6)
+    }
+}
+
+// ---------------------------------------------------------------- layout helpers
+
+fn text_style(size: f64, color: RGBColor) -> TextStyle<'static> {
+    (FONT, size).into_font().color(&color)
+}
+
+const GREY: RGBColor = RGBColor(90, 90, 90);
+const PRESSURE_COLOR: RGBColor = RGBColor(200, 40, 30);
+const FILM_COLOR: RGBColor = RGBColor(20, 90, 180);
+const HERTZ_COLOR: RGBColor = RGBColor(60, 60, 60);
+
+/// Title band: the case title (large) and up to two lines of figures; returns the area below.
+fn titled<'a>(
+    root: &DrawingArea<BitMapBackend<'a>, Shift>,
+    title: &str,
+    lines: &[String],
+) -> DrawResult<DrawingArea<BitMapBackend<'a>, Shift>> {
+    let height = 44 + 24 * lines.len() as u32;
+    let (band, rest) = root.split_vertically(height);
+    let t = if title.trim().is_empty() {
+        "(untitled case)"
+    } else {
+        title.trim()
+    };
+    band.draw_text(&fit(&band, t, 26.0)?, &text_style(26.0, BLACK), (24, 12))?;
+    for (k, line) in lines.iter().enumerate() {
+        band.draw_text(
+            &fit(&band, line, 18.0)?,
+            &text_style(18.0, GREY),
+            (24, 46 + 24 * k as i32),
+        )?;
+    }
+    Ok(rest)
+}
+
+/// `text` shortened with an ellipsis to fit the width of `area` (less 48 px of margins).
+fn fit<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    size: f64,
+) -> DrawResult<String>
+where
+    DB::ErrorType: 'static,
+{
+    let max = area.dim_in_pixel().0.saturating_sub(48);
+    let style = text_style(size, BLACK);
+    let mut t = text.to_string();
+    let mut n = t.chars().count();
+    while n > 1 && area.estimate_text_size(&t, &style)?.0 > max {
+        n -= 1;
+        t = text.chars().take(n).collect::<String>() + "…";
+    }
+    Ok(t)
+}
+
+/// A label with a white box behind it, anchored at its left-centre on `at` (px).
+fn boxed_label<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    at: (i32, i32),
+) -> DrawResult<()>
+where
+    DB::ErrorType: 'static,
+{
+    let style = text_style(16.0, BLACK);
+    let (w, h) = area.estimate_text_size(text, &style)?;
+    let (aw, ah) = area.dim_in_pixel();
+    // keep the label inside the area: flip to the left of the point near the right edge
+    let x = if at.0 + 16 + w as i32 + 6 > aw as i32 {
+        at.0 - 16 - w as i32 - 6
+    } else {
+        at.0 + 16
+    };
+    let y = (at.1 - h as i32 / 2 - 3).clamp(2, ah as i32 - h as i32 - 8);
+    area.draw(&Rectangle::new(
+        [(x - 4, y - 2), (x + w as i32 + 4, y + h as i32 + 6)],
+        ShapeStyle::from(&WHITE.mix(0.85)).filled(),
+    ))?;
+    area.draw(&Rectangle::new(
+        [(x - 4, y - 2), (x + w as i32 + 4, y + h as i32 + 6)],
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    area.draw_text(text, &style, (x, y + 1))?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------- maps
+
+/// A field sampled between cell centres (bilinear; nearest where a neighbour is not finite).
+struct Sampler<'a> {
+    g: &'a Grid,
+    v: &'a [f64],
+}
+
+impl Sampler<'_> {
+    fn at(&self, x: f64, y: f64) -> f64 {
+        let g = self.g;
+        let fi = ((x - g.x_min) / g.dx - 0.5).clamp(0.0, (g.nx - 1) as f64);
+        let fj = ((y - g.y_min) / g.dy - 0.5).clamp(0.0, (g.ny - 1) as f64);
+        let (i0, j0) = (fi.floor() as usize, fj.floor() as usize);
+        let (i1, j1) = ((i0 + 1).min(g.nx - 1), (j0 + 1).min(g.ny - 1));
+        let (tx, ty) = (fi - i0 as f64, fj - j0 as f64);
+        let c = [
+            self.v[g.idx(i0, j0)],
+            self.v[g.idx(i1, j0)],
+            self.v[g.idx(i0, j1)],
+            self.v[g.idx(i1, j1)],
+        ];
+        if c.iter().all(|v| v.is_finite()) {
+            (c[0] * (1.0 - tx) + c[1] * tx) * (1.0 - ty) + (c[2] * (1.0 - tx) + c[3] * tx) * ty
+        } else {
+            let i = if tx < 0.5 { i0 } else { i1 };
+            let j = if ty < 0.5 { j0 } else { j1 };
+            self.v[g.idx(i, j)]
+        }
+    }
+}
+
+/// What a map shows.
+struct MapSpec<'a> {
+    title: &'a str,
+    lines: Vec<String>,
+    grid: &'a Grid,
+    /// values in SI, row-major
+    values: &'a [f64],
+    /// SI -> display unit factor
+    scale: f64,
+    /// colour range in display units
+    range: Range<f64>,
+    cmap: ColorMap,
+    bar_label: String,
+    y_label: &'a str,
+    /// (x, y) in m, label; drawn as a cross (`cross`) or a circle
+    marker: Option<(f64, f64, String)>,
+    cross: bool,
+}
+
+fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawResult<()> {
+    let g = spec.grid;
+    let area = titled(root, spec.title, &spec.lines)?;
+    let (main, bar_area) = area.split_horizontally(WIDTH - 150);
+    let mm = 1e3;
+    let xr = g.x_min * mm..g.x_max() * mm;
+    let yr = g.y_min * mm..g.y_max() * mm;
+    let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
+    let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+    let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+    // equal scales when that costs at most half of the frame (a ball's contact looks round; the
+    // map then keeps next to its colour bar); otherwise fill the frame and say how much the
+    // picture is stretched
+    let (mw, mh) = main.dim_in_pixel();
+    let (w0, h0) = (mw as f64 - 116.0, mh as f64 - 96.0);
+    let stretch = (w0 / xspan) / (h0 / yspan);
+    let (mut hextra, mut vextra) = (0.0, 0.0);
+    if (0.5..=2.0).contains(&stretch) {
+        if stretch > 1.0 {
+            hextra = w0 - w0 / stretch;
+        } else {
+            vextra = h0 - h0 * stretch;
+        }
+    }
+    let (hpad, vpad) = ((hextra / 2.0).round() as i32, (vextra / 2.0).round() as i32);
+    let mut chart = ChartBuilder::on(&main)
+        .margin_left(10 + 2 * hpad)
+        .margin_right(20)
+        .margin_top(10 + vpad)
+        .margin_bottom(24 + vpad)
+        .x_label_area_size(62)
+        .y_label_area_size(86)
+        .build_cartesian_2d(xr.clone(), yr.clone())?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_labels(9)
+        .y_labels(9)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .label_style(text_style(16.0, BLACK))
+        .axis_desc_style(text_style(18.0, BLACK))
+        .x_desc("x, rolling direction (mm)   —   inlet ← → outlet")
+        .y_desc(spec.y_label)
+        .draw()?;
+    // the image, pixel by pixel
+    let plot = chart.plotting_area().strip_coord_spec();
+    let (w, h) = plot.dim_in_pixel();
+    let sampler = Sampler { g, v: spec.values };
+    let (lo, hi) = (spec.range.start, spec.range.end);
+    for py in 0..h {
+        let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
+        for px in 0..w {
+            let x = (xr.start + (px as f64 + 0.5) / w as f64 * xspan) / mm;
+            let v = sampler.at(x, y);
+            let c = if v.is_finite() {
+                let (r, gg, b) = spec.cmap.color((v * spec.scale - lo) / (hi - lo));
+                RGBColor(r, gg, b)
+            } else {
+                RGBColor(190, 190, 190)
+            };
+            plot.draw_pixel((px as i32, py as i32), &c)?;
+        }
+    }
+    plot.draw(&Rectangle::new(
+        [(0, 0), (w as i32 - 1, h as i32 - 1)],
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    if let Some((mx, my, label)) = &spec.marker {
+        let p = chart.backend_coord(&(mx * mm, my * mm));
+        let base = chart.plotting_area().get_base_pixel();
+        let q = (p.0 - base.0, p.1 - base.1);
+        if spec.cross {
+            for (d, style) in [
+                (9, ShapeStyle::from(&WHITE).stroke_width(5)),
+                (8, ShapeStyle::from(&BLACK).stroke_width(2)),
+            ] {
+                plot.draw(&PathElement::new(
+                    vec![(q.0 - d, q.1), (q.0 + d, q.1)],
+                    style,
+                ))?;
+                plot.draw(&PathElement::new(
+                    vec![(q.0, q.1 - d), (q.0, q.1 + d)],
+                    style,
+                ))?;
+            }
+        } else {
+            plot.draw(&Circle::new(q, 8, ShapeStyle::from(&WHITE).stroke_width(4)))?;
+            plot.draw(&Circle::new(q, 8, ShapeStyle::from(&BLACK).stroke_width(2)))?;
+        }
+        boxed_label(&plot, label, q)?;
+    }
+    // the aspect note
+    let stretch = (w as f64 / xspan) / (h as f64 / yspan);
+    let note = if stretch > 1.05 {
+        format!(
+            "not to scale: x stretched {}× relative to y",
+            fmt_sig(stretch, 2)
+        )
+    } else if stretch < 1.0 / 1.05 {
+        format!(
+            "not to scale: y stretched {}× relative to x",
+            fmt_sig(1.0 / stretch, 2)
+        )
+    } else {
+        String::new()
+    };
+    if !note.is_empty() {
+        let (_, mh) = main.dim_in_pixel();
+        main.draw_text(
+            &note,
+            &text_style(15.0, GREY).pos(Pos::new(HPos::Right, VPos::Bottom)),
+            ((WIDTH - 150) as i32 - 20, mh as i32 - 4),
+        )?;
+    }
+    draw_colorbar(&bar_area, spec, vpad)?;
+    Ok(())
+}
+
+fn draw_colorbar(
+    area: &DrawingArea<BitMapBackend, Shift>,
+    spec: &MapSpec,
+    vpad: i32,
+) -> DrawResult<()> {
+    let span = spec.range.end - spec.range.start;
+    let fmt = move |v: &f64| fmt_tick(*v, span);
+    let mut bar = ChartBuilder::on(area)
+        .margin_top(10 + vpad)
+        .margin_bottom(24 + vpad)
+        .margin_left(8)
+        .margin_right(10)
+        .x_label_area_size(62)
+        .right_y_label_area_size(80)
+        .build_cartesian_2d(0.0..1.0, spec.range.clone())?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .set_tick_mark_size(LabelAreaPosition::Right, 6)
+        .y_labels(8)
+        .y_label_formatter(&fmt)
+        .label_style(text_style(16.0, BLACK))
+        .axis_desc_style(text_style(18.0, BLACK))
+        .y_desc(spec.bar_label.as_str())
+        .draw()?;
+    let plot = bar.plotting_area().strip_coord_spec();
+    let (w, h) = plot.dim_in_pixel();
+    for py in 0..h {
+        let t = 1.0 - (py as f64 + 0.5) / h as f64;
+        let (r, g, b) = spec.cmap.color(t);
+        plot.draw(&PathElement::new(
+            vec![(0, py as i32), (w as i32 - 1, py as i32)],
+            ShapeStyle::from(&RGBColor(r, g, b)).stroke_width(1),
+        ))?;
+    }
+    plot.draw(&Rectangle::new(
+        [(0, 0), (w as i32 - 1, h as i32 - 1)],
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------- profiles
+
+/// One curve of a profile plot.
+struct Curve {
+    pts: Vec<(f64, f64)>,
+    color: RGBColor,
+    dashed: bool,
+    label: String,
+}
+
+/// One y axis of a profile plot.
+struct Axis {
+    label: String,
+    range: Range<f64>,
+    curves: Vec<Curve>,
+}
+
+/// Splits a polyline into the pieces inside `range` (in y), with the crossing points added, so
+/// that a clipped curve leaves the frame cleanly.
+fn clip(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
+    let inside = |y: f64| y.is_finite() && y >= range.start && y <= range.end;
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut cur: Vec<(f64, f64)> = Vec::new();
+    for k in 0..pts.len() {
+        let (x, y) = pts[k];
+        if inside(y) {
+            if cur.is_empty() && k > 0 && pts[k - 1].1.is_finite() {
+                cur.push(crossing(pts[k - 1], (x, y), range));
+            }
+            cur.push((x, y));
+        } else if !cur.is_empty() {
+            if y.is_finite() {
+                cur.push(crossing(pts[k - 1], (x, y), range));
+            }
+            out.push(std::mem::take(&mut cur));
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out
+}
+
+fn crossing(a: (f64, f64), b: (f64, f64), range: &Range<f64>) -> (f64, f64) {
+    let edge = if a.1.max(b.1) > range.end {
+        range.end
+    } else {
+        range.start
+    };
+    let t = if b.1 != a.1 {
+        (edge - a.1) / (b.1 - a.1)
+    } else {
+        0.0
+    };
+    (a.0 + t.clamp(0.0, 1.0) * (b.0 - a.0), edge)
+}
+
+/// Draws a profile plot along x (mm) with a left axis and an optional right axis.
+fn draw_profile(
+    root: &DrawingArea<BitMapBackend, Shift>,
+    title: &str,
+    lines: &[String],
+    x_range: Range<f64>,
+    left: &Axis,
+    right: Option<&Axis>,
+    marks: &[(f64, f64, bool, String, RGBColor)],
+) -> DrawResult<()> {
+    let area = titled(root, title, lines)?;
+    let xspan = x_range.end - x_range.start;
+    let lspan = left.range.end - left.range.start;
+    let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+    let l_fmt = move |v: &f64| fmt_tick(*v, lspan);
+    let rrange = right.map(|r| r.range.clone()).unwrap_or(0.0..1.0);
+    let rspan = rrange.end - rrange.start;
+    let r_fmt = move |v: &f64| fmt_tick(*v, rspan);
+    let mut chart = ChartBuilder::on(&area)
+        .margin_left(10)
+        .margin_right(if right.is_some() { 10 } else { 40 })
+        .margin_top(10)
+        .margin_bottom(20)
+        .x_label_area_size(62)
+        .y_label_area_size(86)
+        .right_y_label_area_size(if right.is_some() { 86 } else { 0 })
+        .build_cartesian_2d(x_range.clone(), left.range.clone())?
+        .set_secondary_coord(x_range.clone(), rrange.clone());
+    chart
+        .configure_mesh()
+        .x_labels(10)
+        .y_labels(8)
+        .max_light_lines(0)
+        .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&l_fmt)
+        .label_style(text_style(16.0, BLACK))
+        .axis_desc_style(text_style(18.0, BLACK))
+        .x_desc("x, rolling direction (mm)   —   inlet ← → outlet")
+        .y_desc(left.label.as_str())
+        .draw()?;
+    if let Some(r) = right {
+        chart
+            .configure_secondary_axes()
+            .y_labels(8)
+            .y_label_formatter(&r_fmt)
+            .label_style(text_style(16.0, FILM_COLOR))
+            .axis_desc_style(text_style(18.0, FILM_COLOR))
+            .y_desc(r.label.as_str())
+            .draw()?;
+    }
+    for c in &left.curves {
+        let style = ShapeStyle::from(&c.color).stroke_width(if c.dashed { 2 } else { 3 });
+        let mut first = true;
+        for piece in clip(&c.pts, &left.range) {
+            let anno = if c.dashed {
+                chart.draw_series(DashedLineSeries::new(piece, 10, 7, style))?
+            } else {
+                chart.draw_series(LineSeries::new(piece, style))?
+            };
+            if first {
+                let anno = anno.label(c.label.as_str());
+                if c.dashed {
+                    anno.legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (8, 0)], style)
+                            + PathElement::new(vec![(13, 0), (21, 0)], style)
+                    });
+                } else {
+                    anno.legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], style));
+                }
+                first = false;
+            }
+        }
+    }
+    if let Some(r) = right {
+        for c in &r.curves {
+            let style = ShapeStyle::from(&c.color).stroke_width(if c.dashed { 2 } else { 3 });
+            let mut first = true;
+            for piece in clip(&c.pts, &r.range) {
+                let anno = chart.draw_secondary_series(LineSeries::new(piece, style))?;
+                if first {
+                    anno.label(c.label.as_str())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], style));
+                    first = false;
+                }
+            }
+        }
+    }
+    let plot = chart.plotting_area().strip_coord_spec();
+    let base = chart.plotting_area().get_base_pixel();
+    for (x, y, on_right, label, color) in marks {
+        let p = if *on_right {
+            chart.borrow_secondary().backend_coord(&(*x, *y))
+        } else {
+            chart.backend_coord(&(*x, *y))
+        };
+        let q = (p.0 - base.0, p.1 - base.1);
+        plot.draw(&Circle::new(q, 6, ShapeStyle::from(color).filled()))?;
+        plot.draw(&Circle::new(q, 6, ShapeStyle::from(&BLACK).stroke_width(1)))?;
+        boxed_label(&plot, label, q)?;
+    }
+    // the legend last, so that nothing covers it
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .margin(12)
+        .legend_area_size(36)
+        .label_font(text_style(16.0, BLACK))
+        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
+        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+        .draw()?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------- the three pictures
+
+fn gpa(p: f64) -> f64 {
+    p * 1e-9
+}
+
+fn is_dry(case: &Case) -> bool {
+    case.kind == Kind::Dry
+}
+
+fn y_axis_label(case: &Case) -> &'static str {
+    if case.body1.shape == Shape::Roller || case.body2.shape == Shape::Roller {
+        "y, roller axis (mm)"
+    } else {
+        "y (mm)"
+    }
+}
+
+fn film_word(case: &Case) -> &'static str {
+    if is_dry(case) {
+        "gap after loading"
+    } else {
+        "film thickness"
+    }
+}
+
+/// (max, index) of the finite values.
+fn arg_max(v: &[f64]) -> (f64, usize) {
+    v.iter().enumerate().filter(|(_, x)| x.is_finite()).fold(
+        (f64::NEG_INFINITY, 0),
+        |a, (k, &x)| if x > a.0 { (x, k) } else { a },
+    )
+}
+
+fn arg_min(v: &[f64]) -> (f64, usize) {
+    v.iter()
+        .enumerate()
+        .filter(|(_, x)| x.is_finite())
+        .fold(
+            (f64::INFINITY, 0),
+            |a, (k, &x)| if x < a.0 { (x, k) } else { a },
+        )
+}
+
+/// A non-empty colour or axis range from `lo`, `hi`.
+fn nonempty(lo: f64, hi: f64) -> Range<f64> {
+    if hi > lo {
+        lo..hi
+    } else {
+        let d = if lo.abs() > 0.0 { 0.1 * lo.abs() } else { 1.0 };
+        lo - d..hi + d
+    }
+}
+
+fn pmax_line(solution: &Solution) -> String {
+    let s = &solution.summary;
+    let mut t = format!(
+        "p_max = {} GPa at x = {} mm",
+        fmt_sig(gpa(s.max_pressure_pa), 4),
+        fmt_sig(s.max_pressure_at_m[0] * 1e3, 3)
+    );
+    if solution.grid.ny > 1 {
+        t += &format!(", y = {} mm", fmt_sig(s.max_pressure_at_m[1] * 1e3, 3));
+    }
+    if s.hertz_pressure_pa > 0.0 {
+        t += &format!(
+            "   (Hertz, dry: p_h = {} GPa, b = {} mm)",
+            fmt_sig(gpa(s.hertz_pressure_pa), 4),
+            fmt_sig(s.hertz_half_width_m * 1e3, 3)
+        );
+    }
+    t
+}
+
+fn convergence_line(solution: &Solution, case: &Case) -> String {
+    let s = &solution.summary;
+    let kind = if is_dry(case) { "dry contact" } else { "EHL" };
+    let load = if case.is_infinite_line() {
+        format!("w' = {} N/mm", fmt_sig(s.load_n * 1e-3, 4))
+    } else {
+        format!("F = {} N", fmt_sig(s.load_n, 4))
+    };
+    format!(
+        "{kind}, {load}, {} x {} cells, {}",
+        solution.grid.nx,
+        solution.grid.ny,
+        if s.converged {
+            format!("converged in {} iterations", s.iterations)
+        } else {
+            format!("NOT CONVERGED after {} iterations", s.iterations)
+        }
+    )
+}
+
+/// Hertz pressure along x (mm, GPa) over [-b, b], or nothing when the summary has no Hertz figures.
+fn hertz_curve(solution: &Solution) -> Option<Curve> {
+    let s = &solution.summary;
+    let (ph, b) = (s.hertz_pressure_pa, s.hertz_half_width_m);
+    if !(ph > 0.0 && b > 0.0 && ph.is_finite() && b.is_finite()) {
+        return None;
+    }
+    let n = 200;
+    let pts = (0..=n)
+        .map(|k| {
+            let x = -b + 2.0 * b * k as f64 / n as f64;
+            let r = (1.0 - (x / b).powi(2)).max(0.0);
+            (x * 1e3, gpa(ph * r.sqrt()))
+        })
+        .collect();
+    Some(Curve {
+        pts,
+        color: HERTZ_COLOR,
+        dashed: true,
+        label: "Hertz, dry: p_h √(1 − (x/b)²)".into(),
+    })
+}
+
+fn x_range_mm(g: &Grid) -> Range<f64> {
+    g.x_min * 1e3..g.x_max() * 1e3
+}
+
+fn row(v: &[f64], g: &Grid, j: usize) -> Vec<f64> {
+    v[j * g.nx..(j + 1) * g.nx].to_vec()
+}
+
+/// Pressure profile (+ Hertz) along row `j`: the left axis of the profile plots.
+fn pressure_axis(solution: &Solution, j: usize) -> (Axis, (f64, f64)) {
+    let g = &solution.grid;
+    let p = row(&solution.fields.pressure, g, j);
+    let xs = g.xs();
+    let pts: Vec<(f64, f64)> = xs.iter().zip(&p).map(|(x, p)| (x * 1e3, gpa(*p))).collect();
+    let (pm, k) = arg_max(&p);
+    let top = pm.max(solution.summary.hertz_pressure_pa);
+    let mut curves = vec![Curve {
+        pts,
+        color: PRESSURE_COLOR,
+        dashed: false,
+        label: "pressure (left axis)".into(),
+    }];
+    if let Some(h) = hertz_curve(solution) {
+        curves.push(h);
+    }
+    (
+        Axis {
+            label: "pressure (GPa)".into(),
+            range: nonempty(0.0, gpa(top) * 1.12),
+            curves,
+        },
+        (xs[k] * 1e3, gpa(pm)),
+    )
+}
+
+/// Writes `pressure.png`.
+pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    let g = &solution.grid;
+    render(path, |root| {
+        if g.ny == 1 {
+            let (mut axis, peak) = pressure_axis(solution, 0);
+            axis.curves[0].label = "pressure".into();
+            let marks = [(
+                peak.0,
+                peak.1,
+                false,
+                format!("p_max = {} GPa", fmt_sig(peak.1, 4)),
+                PRESSURE_COLOR,
+            )];
+            draw_profile(
+                root,
+                &case.title,
+                &[
+                    format!("pressure, infinite line contact — {}", pmax_line(solution)),
+                    convergence_line(solution, case),
+                ],
+                x_range_mm(g),
+                &axis,
+                None,
+                &marks,
+            )
+        } else {
+            let (pm, k) = arg_max(&solution.fields.pressure);
+            let (i, j) = (k % g.nx, k / g.nx);
+            draw_map(
+                root,
+                &MapSpec {
+                    title: &case.title,
+                    lines: vec![
+                        format!("pressure — {}", pmax_line(solution)),
+                        convergence_line(solution, case),
+                    ],
+                    grid: g,
+                    values: &solution.fields.pressure,
+                    scale: 1e-9,
+                    range: nonempty(0.0, gpa(pm)),
+                    cmap: ColorMap::Inferno,
+                    bar_label: "pressure (GPa)".into(),
+                    y_label: y_axis_label(case),
+                    marker: Some((g.x(i), g.y(j), format!("p_max {} GPa", fmt_sig(gpa(pm), 4)))),
+                    cross: true,
+                },
+            )
+        }
+    })
+}
+
+/// The film colour range (m): from the minimum to the film over the loaded zone (see the module
+/// documentation); returns (lo, hi, saturates).
+fn film_range(solution: &Solution, film: &[f64]) -> (f64, f64, bool) {
+    let p = &solution.fields.pressure;
+    let (pm, _) = arg_max(p);
+    let (lo, _) = arg_min(film);
+    let (top, _) = arg_max(film);
+    let loaded = film
+        .iter()
+        .zip(p)
+        .filter(|(h, p)| h.is_finite() && **p > 0.05 * pm)
+        .map(|(h, _)| *h)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let mut hi = if loaded.is_finite() && loaded > lo + 0.2 * lo.abs() && loaded > lo {
+        // lubricated: the loaded zone has a film worth showing; give it most of the colours
+        lo + 1.5 * (loaded - lo)
+    } else {
+        // dry (zero gap under load) or flat film: the median gap of the domain
+        let mut v: Vec<f64> = film.iter().copied().filter(|h| h.is_finite()).collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        hi = top;
+    }
+    let saturates = top > hi;
+    (lo, hi.min(top).max(lo), saturates)
+}
+
+/// Writes `film.png`; an error if the solution has no film.
+pub fn write_film(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    let g = &solution.grid;
+    let film = solution
+        .fields
+        .film
+        .as_deref()
+        .ok_or_else(|| draw_err(path, "the solution has no film"))?;
+    let word = film_word(case);
+    let (hmin, kmin) = arg_min(film);
+    let (lo, hi, saturates) = film_range(solution, film);
+    // a profile gets some headroom above the colour-map range
+    let shown_top = if g.ny == 1 { 1.25 * hi } else { hi };
+    let saturates = saturates && arg_max(film).0 > shown_top;
+    let (unit, scale) = film_unit(hi.max(hmin.abs()));
+    let hmin_text = format!("{} {unit}", fmt_sig(hmin * scale, 3));
+    let (imin, jmin) = (kmin % g.nx, kmin / g.nx);
+    let mut line1 = format!(
+        "{word} — minimum {hmin_text} at x = {} mm",
+        fmt_sig(g.x(imin) * 1e3, 3)
+    );
+    if g.ny > 1 {
+        line1 += &format!(", y = {} mm", fmt_sig(g.y(jmin) * 1e3, 3));
+    }
+    if is_dry(case) {
+        line1 = format!("{word} — zero over the contact (dark)");
+        if let Some(area) = solution.summary.contact_area_m2 {
+            line1 += &format!(", contact area {} mm²", fmt_sig(area * 1e6, 3));
+        }
+    }
+    if let Some(hc) = solution.summary.central_film_m {
+        line1 += &format!(";  central {} {unit}", fmt_sig(hc * scale, 3));
+    }
+    let dry = is_dry(case);
+    let line2 = if saturates {
+        let mut t = format!(
+            "{} above {} {unit} (the {} away from the loaded zone is larger)",
+            if g.ny == 1 {
+                "axis clipped"
+            } else {
+                "colours saturate"
+            },
+            fmt_sig(shown_top * scale, 3),
+            if dry { "gap" } else { "film" }
+        );
+        if film.iter().any(|h| !h.is_finite()) {
+            t += "; grey: no material";
+        }
+        t
+    } else {
+        convergence_line(solution, case)
+    };
+    // a dry contact's minimum gap is zero anywhere in the contact: no marker then
+    let film_marker = |x: f64, y: f64, label: String| if dry { None } else { Some((x, y, label)) };
+    render(path, |root| {
+        if g.ny == 1 {
+            let xs = g.xs();
+            let pts: Vec<(f64, f64)> = xs
+                .iter()
+                .zip(film)
+                .map(|(x, h)| (x * 1e3, h * scale))
+                .collect();
+            let top = shown_top * scale;
+            let axis = Axis {
+                label: format!("{word} ({unit})"),
+                range: nonempty(0.0, top),
+                curves: vec![Curve {
+                    pts,
+                    color: FILM_COLOR,
+                    dashed: false,
+                    label: word.into(),
+                }],
+            };
+            let marks: Vec<_> =
+                film_marker(xs[imin] * 1e3, hmin * scale, format!("h_min = {hmin_text}"))
+                    .map(|(x, y, l)| (x, y, false, l, FILM_COLOR))
+                    .into_iter()
+                    .collect();
+            draw_profile(
+                root,
+                &case.title,
+                &[line1, line2],
+                x_range_mm(g),
+                &axis,
+                None,
+                &marks,
+            )
+        } else {
+            draw_map(
+                root,
+                &MapSpec {
+                    title: &case.title,
+                    lines: vec![line1, line2],
+                    grid: g,
+                    values: film,
+                    scale,
+                    range: nonempty(lo * scale, hi * scale),
+                    cmap: ColorMap::Viridis,
+                    bar_label: format!("{word} ({unit})"),
+                    y_label: y_axis_label(case),
+                    marker: film_marker(g.x(imin), g.y(jmin), format!("h_min {hmin_text}")),
+                    cross: false,
+                },
+            )
+        }
+    })
+}
+
+/// Writes `centerline.png`.
+pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    let g = &solution.grid;
+    let j = super::centre_row(solution);
+    let (axis, peak) = pressure_axis(solution, j);
+    let mut marks = vec![(
+        peak.0,
+        peak.1,
+        false,
+        format!("{} GPa", fmt_sig(peak.1, 4)),
+        PRESSURE_COLOR,
+    )];
+    let where_ = if g.ny == 1 {
+        "infinite line contact".to_string()
+    } else {
+        format!(
+            "along x at y = {} mm (axial centre)",
+            fmt_sig(g.y(j) * 1e3, 3)
+        )
+    };
+    let mut lines = vec![
+        format!("centre line {where_}"),
+        convergence_line(solution, case),
+    ];
+    let right = solution.fields.film.as_deref().map(|film| {
+        let word = film_word(case);
+        let h = row(film, g, j);
+        let (hmin, k) = arg_min(&h);
+        let (lo, hi, _) = film_range(solution, film);
+        let _ = lo;
+        // the film axis: from 0 to 2.5x the top of the loaded-zone film so the curve sits below
+        // the pressure; dry: the whole gap along the line
+        let top = if is_dry(case) {
+            arg_max(&h).0
+        } else {
+            2.5 * hi
+        };
+        let (unit, scale) = film_unit(top);
+        let xs = g.xs();
+        if !is_dry(case) {
+            marks.push((
+                xs[k] * 1e3,
+                hmin * scale,
+                true,
+                format!("{} {unit}", fmt_sig(hmin * scale, 3)),
+                FILM_COLOR,
+            ));
+            lines[0] += &format!(
+                ";  minimum {word} on this line {} {unit}",
+                fmt_sig(hmin * scale, 3)
+            );
+        }
+        Axis {
+            label: format!("{word} ({unit})"),
+            range: nonempty(0.0, top * scale),
+            curves: vec![Curve {
+                pts: xs
+                    .iter()
+                    .zip(&h)
+                    .map(|(x, h)| (x * 1e3, h * scale))
+                    .collect(),
+                color: FILM_COLOR,
+                dashed: false,
+                label: format!("{word} (right axis)"),
+            }],
+        }
+    });
+    render(path, |root| {
+        draw_profile(
+            root,
+            &case.title,
+            &lines,
+            x_range_mm(g),
+            &axis,
+            right.as_ref(),
+            &marks,
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_and_sig_formats() {
+        assert_eq!(fmt_tick(0.25, 0.55), "0.25");
+        assert_eq!(fmt_tick(5.0, 10.0), "5");
+        assert_eq!(fmt_tick(-0.0, 1.0), "0");
+        assert_eq!(fmt_tick(0.30000000000000004, 1.0), "0.3");
+        assert_eq!(fmt_sig(1.23456, 4), "1.235");
+        assert_eq!(fmt_sig(0.0123456, 3), "0.0123");
+        assert_eq!(fmt_sig(1234.6, 3), "1235");
+        assert_eq!(film_unit(0.5e-6).0, "nm");
+        assert_eq!(film_unit(2e-6).0, "µm");
+    }
+
+    #[test]
+    fn clip_splits_at_the_top() {
+        let pts = [(0.0, 0.5), (1.0, 2.0), (2.0, 0.5)];
+        let pieces = clip(&pts, &(0.0..1.0));
+        assert_eq!(pieces.len(), 2);
+        assert_eq!(pieces[0], vec![(0.0, 0.5), (1.0 / 3.0, 1.0)]);
+        // the crossing is interpolated: equal to rounding
+        assert!((pieces[1][0].0 - 5.0 / 3.0).abs() < 1e-15 && pieces[1][0].1 == 1.0);
+        assert_eq!(pieces[1][1], (2.0, 0.5));
+    }
+}

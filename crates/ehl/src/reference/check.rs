@@ -1,0 +1,407 @@
+//! The `ehl check` report: derived quantities, dimensionless groups, classical film estimates and
+//! the grid resolution of a validated case, without solving.
+
+use std::fmt;
+
+use super::film;
+use crate::case::{Case, DensityModel, Kind, ViscosityModel};
+use crate::geometry::{Geometry, HertzScales};
+
+/// One classical film estimate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmEstimate {
+    /// formula name and source
+    pub name: &'static str,
+    /// central film (m), if the formula gives one
+    pub central: Option<f64>,
+    /// minimum film (m), if the formula gives one
+    pub minimum: Option<f64>,
+    /// the lubricant laws behind the fit, e.g. "Roelands + Dowson-Higginson"
+    pub laws: &'static str,
+    /// true when the case uses the same viscosity and density laws as the fit
+    pub laws_match: bool,
+}
+
+/// Everything `ehl check` prints. SI units throughout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckReport {
+    pub title: String,
+    pub kind: Kind,
+    pub hertz: HertzScales,
+    /// dimensionless load W: line w'/(E' R), point F/(E' R_x^2)
+    pub w: f64,
+    /// U = eta0 u_e / (E' R) (ehl only)
+    pub u: Option<f64>,
+    /// G = alpha E' (ehl only)
+    pub g: Option<f64>,
+    /// Moes (M, L): line M = W (2U)^-1/2, point M = W (2U)^-3/4, L = G (2U)^1/4 (ehl only)
+    pub moes: Option<(f64, f64)>,
+    /// Pan-Hamrock spike (pressure Pa, position m) for line contacts (ehl only)
+    pub spike: Option<(f64, f64)>,
+    pub films: Vec<FilmEstimate>,
+    pub nx: usize,
+    pub ny: usize,
+    /// cell sizes (m)
+    pub dx: f64,
+    pub dy: f64,
+    /// cells across the Hertz width 2b along x
+    pub cells_across_2b: f64,
+    /// cells across the contact length (finite line) or 2 a_y (point) along y; None for 1D
+    pub cells_across_y: Option<f64>,
+}
+
+/// Builds the report of a validated case.
+pub fn check_report(case: &Case) -> CheckReport {
+    let geom = Geometry::new(case);
+    let h = geom.hertz();
+    let grid = geom.grid();
+    let (e, r) = (h.e_red, h.r);
+    let w = if h.point {
+        h.force / (e * r * r)
+    } else {
+        h.force_per_length / (e * r)
+    };
+    let mut report = CheckReport {
+        title: case.title.clone(),
+        kind: case.kind,
+        hertz: h,
+        w,
+        u: None,
+        g: None,
+        moes: None,
+        spike: None,
+        films: Vec::new(),
+        nx: grid.nx,
+        ny: grid.ny,
+        dx: grid.dx,
+        dy: grid.dy,
+        cells_across_2b: 2.0 * h.b / grid.dx,
+        cells_across_y: if grid.ny > 1 {
+            let span = if h.point {
+                2.0 * h.a_y
+            } else {
+                h.contact_length
+            };
+            Some(span / grid.dy)
+        } else {
+            None
+        },
+    };
+    if let (Kind::Ehl, Some(m), Some(l)) = (case.kind, &case.motion, &case.lubricant) {
+        let u = l.viscosity * m.entrainment_speed / (e * r);
+        let g = l.pressure_viscosity_coefficient * e;
+        report.u = Some(u);
+        report.g = Some(g);
+        let barus = l.viscosity_model == ViscosityModel::Barus;
+        let roelands = l.viscosity_model == ViscosityModel::Roelands;
+        let dh = l.density_model == DensityModel::DowsonHigginson;
+        let incompressible = l.density_model == DensityModel::Constant;
+        if h.point {
+            report.moes = Some(film::moes_point_groups(w, u, g));
+            let k = h.ellipticity;
+            report.films.push(FilmEstimate {
+                name: "Hamrock-Dowson (1977)",
+                central: Some(film::hamrock_dowson_central(w, u, g, k) * r),
+                minimum: Some(film::hamrock_dowson_min(w, u, g, k) * r),
+                laws: "Roelands + Dowson-Higginson",
+                laws_match: roelands && dh,
+            });
+        } else {
+            report.moes = Some(film::moes_line_groups(w, u, g));
+            report.films.push(FilmEstimate {
+                name: "Moes (1992)",
+                central: Some(film::moes_line_central_film(w, u, g) * r),
+                minimum: None,
+                laws: "Barus + incompressible",
+                laws_match: barus && incompressible,
+            });
+            report.films.push(FilmEstimate {
+                name: "Pan-Hamrock (1989)",
+                central: Some(film::pan_hamrock_central(w, u, g) * r),
+                minimum: Some(film::pan_hamrock_min(w, u, g) * r),
+                laws: "Roelands + Dowson-Higginson",
+                laws_match: roelands && dh,
+            });
+            report.films.push(FilmEstimate {
+                name: "Dowson-Higginson (1977)",
+                central: None,
+                minimum: Some(film::dowson_higginson_min(w, u, g) * r),
+                laws: "Barus + Dowson-Higginson",
+                laws_match: barus && dh,
+            });
+            report.spike = Some((
+                film::pan_hamrock_spike_pressure(w, u, g) * e,
+                film::pan_hamrock_spike_position(w, u, g) * r,
+            ));
+        }
+    }
+    report
+}
+
+fn row(f: &mut fmt::Formatter<'_>, label: &str, value: String, unit: &str) -> fmt::Result {
+    let line = format!("  {label:<38} {value:>14}  {unit}");
+    writeln!(f, "{}", line.trim_end())
+}
+
+fn sci(v: f64) -> String {
+    if v.is_infinite() {
+        "inf".into()
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
+fn fixed(v: f64, digits: usize) -> String {
+    if v.is_infinite() {
+        "inf".into()
+    } else {
+        format!("{v:.digits$}")
+    }
+}
+
+impl fmt::Display for CheckReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let h = &self.hertz;
+        let kind = match self.kind {
+            Kind::Dry => "dry",
+            Kind::Ehl => "ehl",
+        };
+        let contact = if h.point {
+            if (h.ellipticity - 1.0).abs() < 1e-9 {
+                "circular point contact"
+            } else {
+                "elliptical point contact"
+            }
+        } else if h.contact_length.is_infinite() {
+            "infinite line contact (1D)"
+        } else {
+            "finite line contact"
+        };
+        writeln!(f, "{} ({kind}, {contact})", self.title)?;
+        writeln!(f, "geometry and Hertz")?;
+        row(f, "reduced modulus E'", fixed(h.e_red / 1e9, 2), "GPa")?;
+        row(f, "reduced radius R (x)", fixed(h.r * 1e3, 4), "mm")?;
+        if h.point {
+            row(f, "reduced radius R_y", fixed(h.r_y * 1e3, 4), "mm")?;
+        } else {
+            row(f, "contact length", fixed(h.contact_length * 1e3, 4), "mm")?;
+        }
+        row(f, "load", fixed(h.force, 2), "N")?;
+        if !h.point {
+            row(f, "load per unit length w'", sci(h.force_per_length), "N/m")?;
+        }
+        row(f, "Hertz half-width b (x)", fixed(h.b * 1e6, 3), "um")?;
+        if h.point {
+            row(f, "Hertz semi-axis a_y (y)", fixed(h.a_y * 1e6, 3), "um")?;
+            row(f, "ellipticity k = a_y / b", fixed(h.ellipticity, 4), "")?;
+            row(f, "Hertz approach", fixed(h.approach * 1e6, 4), "um")?;
+        }
+        row(f, "max Hertz pressure p_h", fixed(h.ph / 1e9, 4), "GPa")?;
+        writeln!(f, "dimensionless groups (u_e = mean speed)")?;
+        let wdef = if h.point {
+            "W = F/(E' R^2)"
+        } else {
+            "W = w'/(E' R)"
+        };
+        row(f, wdef, sci(self.w), "")?;
+        if let (Some(u), Some(g)) = (self.u, self.g) {
+            row(f, "U = eta0 u_e/(E' R)", sci(u), "")?;
+            row(f, "G = alpha E'", fixed(g, 1), "")?;
+        }
+        if let Some((m, l)) = self.moes {
+            let mdef = if h.point {
+                "Moes M = W (2U)^-3/4"
+            } else {
+                "Moes M = W (2U)^-1/2"
+            };
+            row(f, mdef, fixed(m, 3), "")?;
+            row(f, "Moes L = G (2U)^1/4", fixed(l, 3), "")?;
+        }
+        if !self.films.is_empty() {
+            writeln!(
+                f,
+                "classical film estimates (isothermal, Newtonian, smooth)"
+            )?;
+            writeln!(
+                f,
+                "  {:<26} {:>12} {:>12}  {:<28} case uses same laws",
+                "formula", "central nm", "minimum nm", "fitted with"
+            )?;
+            for e in &self.films {
+                let nm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{:.1}", v * 1e9));
+                writeln!(
+                    f,
+                    "  {:<26} {:>12} {:>12}  {:<28} {}",
+                    e.name,
+                    nm(e.central),
+                    nm(e.minimum),
+                    e.laws,
+                    if e.laws_match { "yes" } else { "no" }
+                )?;
+            }
+            if let Some((p, x)) = self.spike {
+                row(f, "Pan-Hamrock spike pressure", fixed(p / 1e9, 4), "GPa")?;
+                row(f, "Pan-Hamrock spike position x", fixed(x * 1e6, 2), "um")?;
+            }
+            if !h.point && h.contact_length.is_finite() {
+                writeln!(
+                    f,
+                    "  (line-contact formulas: estimates for the roller's mid-length)"
+                )?;
+            }
+        }
+        writeln!(f, "grid")?;
+        row(f, "cells nx x ny", format!("{} x {}", self.nx, self.ny), "")?;
+        row(f, "dx", fixed(self.dx * 1e6, 4), "um")?;
+        if self.ny > 1 {
+            row(f, "dy", fixed(self.dy * 1e6, 4), "um")?;
+        }
+        row(f, "cells across 2b (x)", fixed(self.cells_across_2b, 1), "")?;
+        if let Some(c) = self.cells_across_y {
+            let lab = if h.point {
+                "cells across 2a_y (y)"
+            } else {
+                "cells across contact length (y)"
+            };
+            row(f, lab, fixed(c, 1), "")?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::*;
+
+    fn thesis_ch2() -> Case {
+        // thesis ch. 2: R = 60 mm rollers (R_red = 30 mm), L = 9.5 mm, F = 6000 N, u_e = 2.7 m/s,
+        // eta0 = 0.04 Pa s, alpha = 15.9 GPa^-1
+        let body = Body {
+            shape: Shape::Roller,
+            radius: 0.06,
+            radius_y: f64::INFINITY,
+            length: 9.5e-3,
+            youngs_modulus: 200e9,
+            poisson_ratio: 0.3,
+            profile: Profile::Straight,
+            axial_offset: 0.0,
+        };
+        Case {
+            title: "thesis chapter 2".into(),
+            kind: Kind::Ehl,
+            body1: body.clone(),
+            body2: body,
+            alignment: Alignment::default(),
+            load: Load {
+                force: 6000.0,
+                force_per_length: 6000.0 / 9.5e-3,
+            },
+            motion: Some(Motion {
+                entrainment_speed: 2.7,
+                slide_to_roll: 0.0,
+            }),
+            lubricant: Some(Lubricant {
+                viscosity: 0.04,
+                pressure_viscosity_coefficient: 15.9e-9,
+                density: 846.0,
+                viscosity_model: ViscosityModel::Roelands,
+                density_model: DensityModel::DowsonHigginson,
+                rheology: Rheology::Newtonian,
+            }),
+            grid: GridSpec {
+                nx: 256,
+                ny: 512,
+                x_min: -4.0,
+                x_max: 1.5,
+                y_min: -20.0,
+                y_max: 20.0,
+            },
+            solver: SolverSpec {
+                tolerance: 1e-6,
+                max_iterations: 200,
+                mirror_levels: 1,
+                free_end_correction: true,
+            },
+        }
+    }
+
+    #[test]
+    fn report_numbers_are_consistent() {
+        let c = thesis_ch2();
+        let r = check_report(&c);
+        let e = crate::units::reduced_modulus(200e9, 0.3, 200e9, 0.3);
+        assert!((r.hertz.e_red / e - 1.0).abs() < 1e-14);
+        assert!((r.hertz.r - 0.03).abs() < 1e-15);
+        let wl = 6000.0 / 9.5e-3;
+        assert!((r.w - wl / (e * 0.03)).abs() < 1e-20);
+        let u = 0.04 * 2.7 / (e * 0.03);
+        assert!((r.u.unwrap() / u - 1.0).abs() < 1e-14);
+        let (m, l) = r.moes.unwrap();
+        assert!((m - r.w / (2.0 * u).sqrt()).abs() < 1e-12 * m);
+        assert!((l - 15.9e-9 * e * (2.0 * u).powf(0.25)).abs() < 1e-12 * l);
+        // Hertz pressure of w' = 631.6 N/mm on R = 30 mm, E' = 219.8 GPa: ~0.86 GPa
+        assert!(r.hertz.ph > 0.8e9 && r.hertz.ph < 0.9e9, "{}", r.hertz.ph);
+        // grid: 256 cells over 5.5 b -> 2b spans 256 * 2 / 5.5 = 93.1 cells
+        assert!((r.cells_across_2b - 256.0 * 2.0 / 5.5).abs() < 1e-9);
+        // y: contact length 9.5 mm over 40 b
+        let b = r.hertz.b;
+        assert!((r.cells_across_y.unwrap() - 9.5e-3 / (40.0 * b / 512.0)).abs() < 1e-9);
+        // laws: this case runs Roelands + DH, which is what Pan-Hamrock assume
+        let ph = r.films.iter().find(|e| e.name.starts_with("Pan")).unwrap();
+        assert!(ph.laws_match);
+        let moes = r.films.iter().find(|e| e.name.starts_with("Moes")).unwrap();
+        assert!(!moes.laws_match);
+        // the film estimates are of the order of a few hundred nm, central above minimum
+        assert!(ph.central.unwrap() > ph.minimum.unwrap());
+        assert!(ph.minimum.unwrap() > 50e-9 && ph.central.unwrap() < 2e-6);
+        let text = r.to_string();
+        eprintln!("{text}");
+        for needle in [
+            "E'",
+            "Moes M",
+            "Pan-Hamrock",
+            "cells across 2b",
+            "GPa",
+            "dy",
+        ] {
+            assert!(text.contains(needle), "missing {needle} in\n{text}");
+        }
+    }
+
+    #[test]
+    fn dry_point_report_has_no_films() {
+        let mut c = thesis_ch2();
+        c.kind = Kind::Dry;
+        c.motion = None;
+        c.lubricant = None;
+        c.body1 = Body {
+            shape: Shape::Ball,
+            radius: 0.0125,
+            radius_y: 0.0125,
+            length: f64::INFINITY,
+            ..c.body1.clone()
+        };
+        c.body2 = Body {
+            shape: Shape::Flat,
+            radius: f64::INFINITY,
+            length: f64::INFINITY,
+            ..c.body2.clone()
+        };
+        c.load.force = 15.0;
+        c.grid = GridSpec {
+            nx: 128,
+            ny: 128,
+            x_min: -3.0,
+            x_max: 3.0,
+            y_min: -3.0,
+            y_max: 3.0,
+        };
+        let r = check_report(&c);
+        assert!(r.films.is_empty() && r.u.is_none());
+        assert!((r.cells_across_2b - 128.0 / 3.0).abs() < 1e-9);
+        assert!((r.cells_across_y.unwrap() - 128.0 / 3.0).abs() < 1e-9);
+        let text = r.to_string();
+        assert!(text.contains("circular point contact") && text.contains("a_y"));
+    }
+}
