@@ -1,11 +1,12 @@
-//! The discrete Reynolds equation (thesis eq. 2.1, 3.1) and its solvers.
+//! The discrete Reynolds equation (thesis eq. 2.1, 3.1) and the linear algebra of its solver.
 //!
 //! * [`residual`]: the finite-volume Reynolds operator in the dimensionless Venner-Lubrecht
 //!   form, its residual and the mass-flow diagnostics;
-//! * [`multigrid`]: the EHL solver: Venner-Lubrecht relaxation (Gauss-Seidel lines along x where
-//!   the Poiseuille term dominates, Jacobi distributive where it is small) inside FAS multigrid
-//!   with the film recomputed by the elastic operator on every level and h0 fixed by the load
-//!   balance on the coarsest level.
+//! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
+//! * [`gmres`]: restarted, right-preconditioned GMRES (the Newton steps).
+//!
+//! The EHL Newton-Krylov solver that couples them to the elastic operator is [`crate::ehl`].
 
-pub mod multigrid;
+pub mod banded;
+pub mod gmres;
 pub mod residual;

@@ -7,8 +7,8 @@
 //! ```
 //!
 //! with X = x/b, Y = y/b, P = p/p_h, H = h R/b^2, rho = rho/rho0, eta = eta/eta0 and the time
-//! scaled by b/u_e (T = t u_e / b). `f` is zero on the finest grid; the multigrid solver puts the
-//! FAS right-hand side there on coarse grids.
+//! scaled by b/u_e (T = t u_e / b). `f` is a right-hand side (zero for the
+//! plain equation).
 //!
 //! Finite volumes on the cell grid: each cell balances the mass fluxes through its four faces.
 //! * Poiseuille: `eps` at a face is the arithmetic mean of the two cells (Venner & Lubrecht);
@@ -83,6 +83,31 @@ pub(crate) fn couette_east(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> 
     } else {
         1.5 * q(k) - 0.5 * q(k - 1)
     }
+}
+
+/// Derivative of the Couette term `(east - west) / dX` of cell `(i, j)` with respect to
+/// `q = rho H` of the cells `k`, `k - 1`, `k - 2` (same upwind rules as [`couette_east`] and
+/// [`couette_west`]): the wedge part of the Jacobian row.
+#[inline]
+pub(crate) fn couette_stencil(g: &ReynoldsGrid, active: &[bool], i: usize, j: usize) -> [f64; 3] {
+    let k = j * g.nx + i;
+    let mut a = [0.0; 3];
+    let first_cell = i == 0 || !active[k - 1];
+    if !g.second_order || first_cell {
+        a[0] += 1.0;
+    } else {
+        a[0] += 1.5;
+        a[1] -= 0.5;
+    }
+    if first_cell {
+        a[0] -= 1.0;
+    } else if !g.second_order || i == 1 || !active[k - 2] {
+        a[1] -= 1.0;
+    } else {
+        a[1] -= 1.5;
+        a[2] += 0.5;
+    }
+    [a[0] / g.dx, a[1] / g.dx, a[2] / g.dx]
 }
 
 /// Poiseuille coefficient of the face between cell `k` and its neighbour `n` (None: domain edge),
