@@ -1,1 +1,107 @@
-fn main() {}
+//! EHL solver benchmarks (criterion, sample size 10): time to the default tolerance (1e-6).
+//!
+//! * infinite line contact (M = 100, L = 10, Roelands + Dowson-Higginson) on 256, 512, 1024 cells
+//!   over [-4.5 b, 1.5 b] (growth with N);
+//! * ball on glass (the EHL-FBNS case: R = 12.5 mm, E' = 110 GPa, F = 15 N, u_e = 0.09 m/s,
+//!   eta0 = 0.25 Pa s, alpha = 22 GPa^-1) on 129^2 cells over [-3a, 3a]^2.
+//!
+//! Run: `cargo bench -p ehl --bench ehl`.
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use ehl::case::{DensityModel, Lubricant, Rheology, ViscosityModel};
+use ehl::ehl::{solve_steady, EhlParams, EhlProblem};
+use ehl::elastic::{Deflection, FftDeflection};
+use ehl::grid::Grid;
+use ehl::units;
+
+fn lub(eta0: f64, alpha: f64) -> Lubricant {
+    Lubricant {
+        viscosity: eta0,
+        pressure_viscosity_coefficient: alpha,
+        density: 850.0,
+        viscosity_model: ViscosityModel::Roelands,
+        density_model: DensityModel::DowsonHigginson,
+        rheology: Rheology::Newtonian,
+    }
+}
+
+fn line(c: &mut Criterion) {
+    let (e, r, eta0, alpha): (f64, f64, f64, f64) = (2.2e11, 0.02, 0.04, 2.0e-8);
+    let (m, l): (f64, f64) = (100.0, 10.0);
+    // Moes groups with 2U: L = G (2U)^(1/4), M = W (2U)^(-1/2)
+    let u2 = (l / (alpha * e)).powi(4);
+    let w = m * u2.sqrt() * e * r;
+    let ue = 0.5 * u2 * e * r / eta0;
+    let b = units::hertz_line_half_width(w, r, e);
+    let ph = units::hertz_line_pressure(w, r, e);
+    let lub = lub(eta0, alpha);
+    let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
+    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
+    let mut group = c.benchmark_group("ehl_line_M100_L10");
+    group.sample_size(10);
+    for &nx in &[256usize, 512, 1024] {
+        let grid = Grid::new(nx, 1, -4.5 * b, 1.5 * b, -0.5, 0.5);
+        let prob = EhlProblem {
+            grid,
+            gap: &gap,
+            operator: &op,
+            load: w,
+            lubricant: &lub,
+            entrainment_speed: ue,
+            reduced_radius: r,
+            reduced_modulus: e,
+            hertz_half_width: b,
+            hertz_pressure: ph,
+            initial_pressure: None,
+        };
+        let params = EhlParams::default();
+        let res = solve_steady(&prob, &params);
+        eprintln!(
+            "line nx {nx}: {} Newton {} GMRES {} operator applications {}",
+            res.termination, res.iterations, res.linear_iterations, res.operator_applications
+        );
+        group.bench_with_input(BenchmarkId::from_parameter(nx), &nx, |bch, _| {
+            bch.iter(|| solve_steady(&prob, &params))
+        });
+    }
+    group.finish();
+}
+
+fn ball(c: &mut Criterion) {
+    let (r, e, f, ue, eta0, alpha) = (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
+    let hz = units::hertz_point(f, r, e);
+    let lub = lub(eta0, alpha);
+    let a = hz.a;
+    let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
+    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::half_space(g, e)) };
+    let mut group = c.benchmark_group("ehl_ball_on_glass");
+    group.sample_size(10);
+    for &n in &[129usize] {
+        let grid = Grid::new(n, n, -3.0 * a, 3.0 * a, -3.0 * a, 3.0 * a);
+        let prob = EhlProblem {
+            grid,
+            gap: &gap,
+            operator: &op,
+            load: f,
+            lubricant: &lub,
+            entrainment_speed: ue,
+            reduced_radius: r,
+            reduced_modulus: e,
+            hertz_half_width: a,
+            hertz_pressure: hz.p0,
+            initial_pressure: None,
+        };
+        let params = EhlParams::default();
+        let res = solve_steady(&prob, &params);
+        eprintln!(
+            "ball {n}^2: {} Newton {} GMRES {} operator applications {}",
+            res.termination, res.iterations, res.linear_iterations, res.operator_applications
+        );
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |bch, _| {
+            bch.iter(|| solve_steady(&prob, &params))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, line, ball);
+criterion_main!(benches);

@@ -1,1 +1,556 @@
-//! EHL coupling: film h = h0 + g + deflection (thesis eq. 2.3), load balance through h0, steady drivers.
+//! EHL coupling and the steady driver: film h = h0 + g + deflection (thesis eq. 2.3), the load
+//! balance through h0 (thesis fig. 2.3), Newtonian compressible Reynolds (eq. 2.1) with
+//! Dowson-Higginson (2.10) or constant density and Roelands (2.11) or Barus viscosity, the
+//! Reynolds cavitation condition as a complementarity problem.
+//!
+//! The problem is solved in the dimensionless form of Venner & Lubrecht (2000):
+//! X = x/b, P = p/p_h, H = h R/b^2, lambda = 12 u_e eta0 R^2/(b^3 p_h), by a Jacobian-free
+//! Newton-Krylov method (Knoll & Keyes, J. Comput. Phys. 193 (2004) 357-397):
+//!
+//! * unknowns P (every cell with material) and H0; equations Phi = min(P, c F) = 0 (semismooth
+//!   Newton / primal-dual active set for cavitation) and the load balance (see [`system`]);
+//! * each Newton step solves J d = -R by restarted GMRES to a relative tolerance of 1e-2 .. 1e-4
+//!   (Eisenstat-Walker forcing), J v by a finite-difference directional derivative (one elastic
+//!   operator application per product), right-preconditioned by banded line solves along x
+//!   that carry the Poiseuille term and the local part of the elastic wedge coupling, with H0
+//!   by a Schur complement;
+//! * a backtracking line search on ||R||_2 (P clamped at >= 0), and if Newton fails, continuation
+//!   in the pressure-viscosity coefficient (alpha scaled by 1/4, 1/2, ... up to 1, each stage
+//!   started from the previous solution).
+//!
+//! Results are returned in SI.
+
+mod system;
+
+use crate::case::Lubricant;
+use crate::elastic::Deflection;
+use crate::grid::Grid;
+use crate::reference::film;
+use crate::reynolds::gmres::{gmres, norm};
+use crate::reynolds::residual;
+use system::{jacobian_product, Linear, Physics, Preconditioner, State, System};
+
+/// A steady isothermal EHL problem (SI units).
+pub struct EhlProblem<'a> {
+    pub grid: Grid,
+    /// undeformed gap g(x, y) (m), f64::INFINITY where there is no material
+    pub gap: &'a (dyn Fn(f64, f64) -> f64 + Sync),
+    /// elastic operator factory (any grid): deflection (m) from cell pressures (Pa)
+    pub operator: &'a (dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
+    /// N, or N/m when grid.ny == 1 (infinite line)
+    pub load: f64,
+    pub lubricant: &'a Lubricant,
+    /// u_e = (u1 + u2)/2 (m/s)
+    pub entrainment_speed: f64,
+    /// R in the rolling direction (m)
+    pub reduced_radius: f64,
+    /// E' (Pa)
+    pub reduced_modulus: f64,
+    /// b (m): the length scale
+    pub hertz_half_width: f64,
+    /// p_h (Pa): the pressure scale
+    pub hertz_pressure: f64,
+    /// initial pressure (Pa) on `grid`, e.g. the dry solution; None: a Hertz profile
+    pub initial_pressure: Option<&'a [f64]>,
+}
+
+/// Solver controls.
+#[derive(Debug, Clone, Copy)]
+pub struct EhlParams {
+    /// on the relative residual (see [`EhlResult::residual`]) and the relative load error
+    pub tolerance: f64,
+    /// maximum number of Newton steps per continuation stage
+    pub max_iterations: usize,
+    /// GMRES restart length
+    pub gmres_restart: usize,
+    /// maximum GMRES iterations per Newton step
+    pub max_linear_iterations: usize,
+    /// half-width (cells) of the elastic coupling kept in the line preconditioner
+    pub band: usize,
+    /// fall back to continuation in alpha when Newton fails from the start
+    pub continuation: bool,
+    /// initial pseudo-time step (scaled rows: 1 is comparable to the Jacobian diagonal;
+    /// f64::INFINITY for plain Newton)
+    pub pseudo_time_step: f64,
+}
+
+impl Default for EhlParams {
+    fn default() -> Self {
+        EhlParams {
+            tolerance: 1e-6,
+            max_iterations: 60,
+            gmres_restart: 40,
+            max_linear_iterations: 400,
+            band: 4,
+            continuation: true,
+            pseudo_time_step: 1.0,
+        }
+    }
+}
+
+/// The steady solution (SI) and how it was reached.
+#[derive(Debug, Clone)]
+pub struct EhlResult {
+    /// Pa
+    pub pressure: Vec<f64>,
+    /// m (f64::INFINITY on cells without material)
+    pub film: Vec<f64>,
+    /// m (both bodies, positive opening the gap)
+    pub deflection: Vec<f64>,
+    /// Pa s
+    pub viscosity: Vec<f64>,
+    /// kg/m^3
+    pub density: Vec<f64>,
+    /// m
+    pub h0: f64,
+    /// Newton steps (all continuation stages)
+    pub iterations: usize,
+    /// GMRES iterations (all Newton steps)
+    pub linear_iterations: usize,
+    /// elastic operator applications (the dominant cost)
+    pub operator_applications: usize,
+    /// Newton runs: grid-sequencing levels and continuation stages (1 = a single run)
+    pub continuation_stages: usize,
+    /// operator applications as f64 (kept for callers of the earlier multigrid driver)
+    pub work_units: f64,
+    /// relative mass imbalance ||min(P/c, F)||_2 / ||d(rho H)/dX||_2 over cells with material
+    /// (F the discrete Reynolds residual, c its local diagonal scaling; see `ehl::system`)
+    pub residual: f64,
+    /// (sum p dA - load) / load
+    pub load_error: f64,
+    pub converged: bool,
+    pub termination: String,
+    /// mass flows (kg/s; per metre of length for a line contact): through the inlet; through
+    /// the outlet and into the cavitated zone; out through the free y-edges
+    pub inflow: f64,
+    pub outflow: f64,
+    pub side_leakage: f64,
+}
+
+#[derive(Default)]
+struct Stats {
+    newton: usize,
+    gmres: usize,
+    stages: usize,
+    /// operator applications on coarser grids (grid sequencing)
+    applies: usize,
+}
+
+/// Outcome of one Newton run: converged, reason, relative residual, load error.
+struct StageEnd {
+    converged: bool,
+    reason: String,
+    residual: f64,
+    load_error: f64,
+}
+
+/// Newton iteration from `st` (evaluated) to `tol`; on return `st` is the best state seen.
+///
+/// Globalised by pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998)
+/// 508-523): the Reynolds rows of J get the shift 1/dtau, dtau grows by switched evolution
+/// relaxation (dtau_k+1 = dtau_k ||R_k|| / ||R_k+1||) so the iteration turns into Newton as
+/// the residual falls; each step is then backtracked on ||R||_2, and a step that does not
+/// reduce ||R|| is retried with dtau / 4.
+fn newton(sys: &mut System, st: &mut State, tol: f64, dtau0: f64, par: &EhlParams, stats: &mut Stats) -> StageEnd {
+    let n = sys.n();
+    let mut c = vec![0.0; n];
+    let mut set = vec![false; n];
+    let mut set_t = vec![false; n];
+    let mut r = vec![0.0; n + 1];
+    let mut rt = vec![0.0; n + 1];
+    let mut u = vec![0.0; n + 1];
+    let mut bcol = vec![0.0; n];
+    let mut trial = st.clone();
+    let mut lin = Linear::new(n);
+    let mut e_h0 = vec![0.0; n + 1];
+    e_h0[n] = 1.0;
+    let mut best: Option<(f64, State)> = None;
+    let mut prev_merit: Option<f64> = None;
+    let mut eta = 1e-2;
+    let mut dtau = dtau0;
+    let mut full_step = false;
+    let mut it = 0;
+    let mut fresh = true;
+    let mut merit = 0.0;
+    let end = loop {
+        if fresh {
+            if !st.is_finite() {
+                break (false, String::from("non-finite state"));
+            }
+            sys.scaling(st, &mut c);
+            sys.merit_vector(st, &c, &mut r, &mut set);
+            let res = sys.relative_residual(st, &c);
+            let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
+            let score = res.max(lerr.abs());
+            if score.is_finite() && best.as_ref().is_none_or(|b| score < b.0) {
+                best = Some((score, st.clone()));
+            }
+            if res <= tol && lerr.abs() <= tol {
+                break (true, String::from("converged"));
+            }
+            merit = norm(&r);
+            if let Some(pm) = prev_merit {
+                // Eisenstat & Walker (1996) choice 2, safeguarded to [1e-4, 1e-2]
+                eta = (0.9 * (merit / pm).powi(2)).clamp(1e-4, 1e-2);
+                // switched evolution relaxation, at least doubled after a full step
+                dtau *= (pm / merit).min(100.0).max(if full_step { 2.0 } else { 0.0 });
+            }
+            prev_merit = Some(merit);
+            // exact H0 column
+            sys.directional(st, &e_h0, &mut lin, &mut bcol);
+            for k in 0..n {
+                bcol[k] = if set[k] { 0.0 } else { c[k] * bcol[k] };
+            }
+        }
+        if it >= par.max_iterations {
+            break (false, format!("no convergence in {} Newton steps", par.max_iterations));
+        }
+        let shift = if dtau.is_finite() && dtau < 1e12 { 1.0 / dtau } else { 0.0 };
+        let Some(pc) = Preconditioner::new(sys, st, &c, &set, &bcol, shift) else {
+            break (false, String::from("singular preconditioner"));
+        };
+        let rhs: Vec<f64> = r.iter().map(|v| -v).collect();
+        let out = {
+            let st_ref: &State = st;
+            gmres(
+                &rhs,
+                &mut u,
+                par.gmres_restart,
+                par.max_linear_iterations,
+                eta,
+                &mut |v, o| jacobian_product(sys, st_ref, &mut lin, &c, &set, shift, v, o),
+                &mut |v, o| pc.apply(v, o),
+            )
+        };
+        stats.gmres += out.iterations;
+        it += 1;
+        stats.newton += 1;
+        // backtracking line search on ||R||_2 (same scaling c), P clamped at >= 0
+        let mut lam = 1.0;
+        let accepted = u.iter().all(|v| v.is_finite())
+            && loop {
+                for k in 0..n {
+                    trial.p[k] = (st.p[k] + lam * u[k]).max(0.0);
+                }
+                trial.h0 = st.h0 + lam * u[n];
+                sys.eval(&mut trial);
+                // a negative film under pressure is the spurious branch eps = 0: not a step
+                let film_ok = || (0..n).all(|k| trial.p[k] <= 0.0 || trial.h[k] > 0.0);
+                if trial.is_finite() && film_ok() {
+                    sys.merit_vector(&trial, &c, &mut rt, &mut set_t);
+                    let m = norm(&rt);
+                    if m.is_finite() && m <= (1.0 - 1e-4 * lam) * merit {
+                        break true;
+                    }
+                }
+                lam *= 0.5;
+                if lam < if shift == 0.0 { 1e-3 } else { 0.1 } {
+                    break false;
+                }
+            };
+        full_step = accepted && lam == 1.0;
+        if accepted {
+            std::mem::swap(st, &mut trial);
+            fresh = true;
+        } else if shift == 0.0 {
+            break (false, format!("line search failed at Newton step {it}"));
+        } else {
+            dtau *= 0.25;
+            fresh = false;
+            if dtau < 1e-8 {
+                break (false, format!("stalled at Newton step {it}: no descent even with a small pseudo-time step"));
+            }
+        }
+    };
+    if !end.0 {
+        if let Some((_, b)) = best {
+            *st = b;
+        }
+    } else {
+        // converged: cells of the active set carry P = 0 exactly (not a round-off positive value),
+        // so the mass flows see a clean cavitation boundary
+        sys.scaling(st, &mut c);
+        sys.merit_vector(st, &c, &mut r, &mut set);
+        if (0..n).any(|k| set[k] && st.p[k] != 0.0) {
+            for k in 0..n {
+                if set[k] {
+                    st.p[k] = 0.0;
+                }
+            }
+            sys.eval(st);
+        }
+    }
+    sys.scaling(st, &mut c);
+    StageEnd {
+        converged: end.0,
+        reason: end.1,
+        residual: sys.relative_residual(st, &c),
+        load_error: (sys.carried(&st.p) - sys.load) / sys.load,
+    }
+}
+
+/// Plain Newton from `st`; if it fails, pseudo-transient continuation from the same start.
+fn solve_from(sys: &mut System, st: &mut State, tol: f64, par: &EhlParams, stats: &mut Stats) -> StageEnd {
+    let start = st.clone();
+    let e = newton(sys, st, tol, f64::INFINITY, par, stats);
+    if e.converged || !par.pseudo_time_step.is_finite() {
+        return e;
+    }
+    let mut st2 = start;
+    let e2 = newton(sys, &mut st2, tol, par.pseudo_time_step, par, stats);
+    if e2.converged || e2.residual < e.residual {
+        *st = st2;
+        StageEnd { reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason), ..e2 }
+    } else {
+        StageEnd { reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason), ..e }
+    }
+}
+
+/// Whether the gap describes a point contact (it grows along y, a roller's does not).
+fn is_point(p: &EhlProblem) -> bool {
+    let g = p.grid;
+    if g.ny == 1 {
+        return false;
+    }
+    let (b, r) = (p.hertz_half_width, p.reduced_radius);
+    let ymid = 0.5 * (g.y_min + g.y_max());
+    let g0 = (p.gap)(0.0, ymid);
+    let ge = (p.gap)(0.0, g.y(0));
+    ge.is_finite() && g0.is_finite() && (ge - g0) * r / (b * b) > 0.5
+}
+
+/// Classical central film h_c / R to place H0 at the start (Moes for lines, Hamrock-Dowson for
+/// points); only a starting value, Newton fixes H0 by the load balance.
+fn film_guess(p: &EhlProblem, alpha: f64, point: bool) -> f64 {
+    let (e, r) = (p.reduced_modulus, p.reduced_radius);
+    let u = p.lubricant.viscosity * p.entrainment_speed / (e * r);
+    let g = alpha * e;
+    if point {
+        film::hamrock_dowson_central(p.load / (e * r * r), u, g, 1.0)
+    } else {
+        let wl = if p.grid.ny == 1 { p.load } else { p.load / (p.grid.y_max() - p.grid.y_min) };
+        film::moes_line_central_film(wl / (e * r), u, g)
+    }
+}
+
+/// The starting state: the given or a Hertz pressure scaled to the load, H0 from the classical
+/// film at the pressure maximum.
+fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
+    let grid = sys.grid;
+    let b = problem.hertz_half_width;
+    let n = grid.len();
+    let point = is_point(problem);
+    let mut st = State::new(n);
+    match problem.initial_pressure {
+        Some(p0) if grid == problem.grid && p0.len() == n && p0.iter().any(|v| v.is_finite() && *v > 0.0) => {
+            for k in 0..n {
+                st.p[k] = if sys.active[k] && p0[k].is_finite() { (p0[k] / problem.hertz_pressure).max(0.0) } else { 0.0 };
+            }
+        }
+        _ => {
+            let ymid = 0.5 * (grid.y_min + grid.y_max());
+            for j in 0..grid.ny {
+                for i in 0..grid.nx {
+                    let k = grid.idx(i, j);
+                    let x = grid.x(i) / b;
+                    let y = if point { (grid.y(j) - ymid) / b } else { 0.0 };
+                    let s = 1.0 - x * x - y * y;
+                    st.p[k] = if sys.active[k] && s > 0.0 { s.sqrt() } else { 0.0 };
+                }
+            }
+        }
+    }
+    let carried = sys.carried(&st.p);
+    if carried > 0.0 {
+        let s = sys.load / carried;
+        st.p.iter_mut().for_each(|p| *p *= s);
+    }
+    st.h0 = 0.0;
+    sys.eval(&mut st);
+    let hc = film_guess(problem, alpha, point) * problem.reduced_radius / (b * b / problem.reduced_radius);
+    let kmax = (0..n).filter(|&k| sys.active[k]).max_by(|&a, &b| st.p[a].total_cmp(&st.p[b])).unwrap_or(0);
+    st.h0 = if hc.is_finite() { hc - st.h[kmax] } else { -st.h[kmax] };
+    sys.eval_film(&mut st);
+    st
+}
+
+/// Solve the steady isothermal EHL problem (thesis ch. 2) by Newton-Krylov.
+///
+/// Never panics on a physical input and never returns NaN: when Newton fails (even with
+/// continuation) or does not reach the tolerance within `max_iterations` steps, the best
+/// state seen is returned with `converged == false` and the reason in `termination`.
+pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
+    let mut stats = Stats::default();
+    let (mut sys, st, end) = solve_grid(problem, problem.grid, params, &mut stats);
+    finish(problem, &mut sys, st, end, &stats)
+}
+
+/// The grid with half the cells along x (and along y unless ny == 1), same extents, if the
+/// grid is fine enough for grid sequencing.
+fn coarser(g: Grid) -> Option<Grid> {
+    let ok_x = g.nx >= 256 && g.nx % 2 == 0;
+    let ok_y = g.ny == 1 || (g.ny % 2 == 0 && g.ny >= 64);
+    (ok_x && ok_y).then(|| {
+        Grid::new(g.nx / 2, if g.ny == 1 { 1 } else { g.ny / 2 }, g.x_min, g.x_max(), g.y_min, g.y_max())
+    })
+}
+
+/// Bilinear interpolation of a cell-centred field from `cg` to `fg` (same extents).
+fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
+    let pos = |x: f64, x0: f64, d: f64, n: usize| -> (usize, usize, f64) {
+        let s = ((x - x0) / d - 0.5).clamp(0.0, (n - 1) as f64);
+        let i = (s.floor() as usize).min(n - 1);
+        let i1 = (i + 1).min(n - 1);
+        (i, i1, s - i as f64)
+    };
+    for j in 0..fg.ny {
+        let (j0, j1, ty) = if fg.ny == 1 { (0, 0, 0.0) } else { pos(fg.y(j), cg.y_min, cg.dy, cg.ny) };
+        for i in 0..fg.nx {
+            let (i0, i1, tx) = pos(fg.x(i), cg.x_min, cg.dx, cg.nx);
+            let a = v[cg.idx(i0, j0)] * (1.0 - tx) + v[cg.idx(i1, j0)] * tx;
+            let b = v[cg.idx(i0, j1)] * (1.0 - tx) + v[cg.idx(i1, j1)] * tx;
+            out[fg.idx(i, j)] = a * (1.0 - ty) + b * ty;
+        }
+    }
+}
+
+/// Solve on `grid`: grid sequencing (the solution on the grid twice as coarse, interpolated, as
+/// the start) when the grid is fine and no initial pressure is given; otherwise, or if that
+/// fails, from the Hertz/dry start with continuation in alpha.
+fn solve_grid(problem: &EhlProblem, grid: Grid, params: &EhlParams, stats: &mut Stats) -> (System, State, StageEnd) {
+    let b = problem.hertz_half_width;
+    let r = problem.reduced_radius;
+    let ph = problem.hertz_pressure;
+    let lub = problem.lubricant;
+    let lambda = 12.0 * problem.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph);
+    let phys = Physics { lubricant: lub.clone(), ph, lambda };
+    if problem.initial_pressure.is_none() {
+        if let Some(cg) = coarser(grid) {
+            let (csys, cst, cend) = solve_grid(problem, cg, params, stats);
+            stats.applies += csys.applies;
+            if cend.converged {
+                let op = (problem.operator)(grid);
+                let mut sys = System::new(grid, op, problem.gap, b, r, phys.clone(), problem.load, params.band.max(1));
+                let mut st = State::new(grid.len());
+                interpolate(&cg, &cst.p, &grid, &mut st.p);
+                st.h0 = cst.h0;
+                // keep the load exact on the new grid
+                let carried = sys.carried(&st.p);
+                if carried > 0.0 {
+                    let s = sys.load / carried;
+                    st.p.iter_mut().for_each(|p| *p *= s);
+                }
+                sys.eval(&mut st);
+                stats.stages += 1;
+                let end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
+                if end.converged {
+                    return (sys, st, end);
+                }
+            }
+        }
+    }
+    solve_direct(problem, grid, phys, params, stats)
+}
+
+/// Solve on `grid` from the Hertz/dry start, with continuation in alpha if Newton fails.
+fn solve_direct(problem: &EhlProblem, grid: Grid, phys: Physics, params: &EhlParams, stats: &mut Stats) -> (System, State, StageEnd) {
+    let b = problem.hertz_half_width;
+    let r = problem.reduced_radius;
+    let alpha = problem.lubricant.pressure_viscosity_coefficient;
+    let op = (problem.operator)(grid);
+    let mut sys = System::new(grid, op, problem.gap, b, r, phys, problem.load, params.band.max(1));
+
+    let mut st = start(problem, &mut sys, alpha);
+    let initial = st.clone();
+    stats.stages += 1;
+    let mut end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
+    if !end.converged && params.continuation && alpha > 0.0 {
+        // continuation in alpha from the start: stages alpha f, f -> 1, the increment halved
+        // after a failed stage and grown after a successful one
+        let first_reason = end.reason.clone();
+        let mut done: f64 = 0.0;
+        let mut step: f64 = 0.25;
+        let mut from = initial.clone();
+        let mut fresh = true;
+        loop {
+            let f = (done + step).min(1.0);
+            let last = f >= 1.0;
+            sys.phys.lubricant.pressure_viscosity_coefficient = alpha * f;
+            let mut cur = if fresh {
+                start(problem, &mut sys, alpha * f)
+            } else {
+                let mut s = from.clone();
+                sys.eval(&mut s);
+                s
+            };
+            stats.stages += 1;
+            let tol = if last { params.tolerance } else { params.tolerance.max(1e-3) };
+            let e = solve_from(&mut sys, &mut cur, tol, params, stats);
+            if e.converged {
+                done = f;
+                from = cur;
+                fresh = false;
+                if last {
+                    st = from.clone();
+                    end = e;
+                    break;
+                }
+                step *= 1.5;
+            } else {
+                step *= 0.5;
+                if step < 1.0 / 64.0 {
+                    end = StageEnd {
+                        reason: format!("{first_reason}; continuation in alpha stalled at {:.3} alpha: {}", done, e.reason),
+                        ..e
+                    };
+                    // the best full-alpha state is the direct attempt's
+                    sys.phys.lubricant.pressure_viscosity_coefficient = alpha;
+                    st = initial.clone();
+                    let _ = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
+                    break;
+                }
+            }
+        }
+        sys.phys.lubricant.pressure_viscosity_coefficient = alpha;
+        sys.eval(&mut st);
+    }
+    (sys, st, end)
+}
+
+fn finish(problem: &EhlProblem, sys: &mut System, mut st: State, end: StageEnd, stats: &Stats) -> EhlResult {
+    let b = problem.hertz_half_width;
+    let r = problem.reduced_radius;
+    let ph = problem.hertz_pressure;
+    let lub = problem.lubricant;
+    let hs = b * b / r;
+    sys.eval(&mut st);
+    let n = st.p.len();
+    let fin = |v: f64| if v.is_finite() { v } else { f64::MAX };
+    let mut out = EhlResult {
+        pressure: st.p.iter().map(|p| p * ph).collect(),
+        film: (0..n).map(|k| if sys.active[k] { st.h[k] * hs } else { f64::INFINITY }).collect(),
+        deflection: st.def.iter().map(|d| d * hs).collect(),
+        viscosity: st.p.iter().map(|&p| fin(lub.viscosity * sys.phys.eta(p))).collect(),
+        density: st.p.iter().map(|&p| lub.density * sys.phys.rho(p)).collect(),
+        h0: st.h0 * hs,
+        iterations: stats.newton,
+        linear_iterations: stats.gmres,
+        operator_applications: sys.applies + stats.applies,
+        continuation_stages: stats.stages,
+        work_units: (sys.applies + stats.applies) as f64,
+        residual: fin(end.residual),
+        load_error: fin(end.load_error),
+        converged: end.converged,
+        termination: end.reason,
+        inflow: 0.0,
+        outflow: 0.0,
+        side_leakage: 0.0,
+    };
+    let m = residual::mass_flow(&sys.rg, &st.fields(&sys.active));
+    // dimensionless flow (rho/rho0) H dY per unit u_e -> kg/s: rho0 u_e (b^2/R) b
+    let q = lub.density * problem.entrainment_speed * hs * b;
+    out.inflow = m.inflow * q;
+    out.outflow = m.outflow * q;
+    out.side_leakage = m.side_leakage * q;
+    out
+}

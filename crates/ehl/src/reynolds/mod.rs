@@ -1,1 +1,12 @@
-//! The discrete Reynolds equation (thesis eq. 2.1, 3.1) and its solvers.
+//! The discrete Reynolds equation (thesis eq. 2.1, 3.1) and the linear algebra of its solver.
+//!
+//! * [`residual`]: the finite-volume Reynolds operator in the dimensionless Venner-Lubrecht
+//!   form, its residual and the mass-flow diagnostics;
+//! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
+//! * [`gmres`]: restarted, right-preconditioned GMRES (the Newton steps).
+//!
+//! The EHL Newton-Krylov solver that couples them to the elastic operator is [`crate::ehl`].
+
+pub mod banded;
+pub mod gmres;
+pub mod residual;

@@ -1,0 +1,168 @@
+//! Infinite line contact (ny == 1): film against the classical fits, grid convergence.
+mod common;
+use common::*;
+use ehl::case::{DensityModel, ViscosityModel};
+use ehl::ehl::{solve_steady, EhlParams, EhlProblem, EhlResult};
+use ehl::elastic::{Deflection, FftDeflection};
+use ehl::grid::Grid;
+use ehl::units;
+
+pub struct LineCase {
+    pub e: f64,
+    pub r: f64,
+    pub w: f64,
+    pub ue: f64,
+    pub b: f64,
+    pub ph: f64,
+    pub lub: ehl::case::Lubricant,
+}
+
+/// A line contact with Moes groups (M, L) (Venner-Lubrecht definition with 2U, see
+/// `reference::film::moes_line_groups`): E' = 2.2e11 Pa, R = 0.02 m, eta0 = 0.04 Pa s,
+/// alpha = 20 GPa^-1 (G = 4400); U from L, W from M.
+pub fn line_case(m: f64, l: f64, visc: ViscosityModel, dens: DensityModel) -> LineCase {
+    let (e, r, eta0, alpha) = (2.2e11, 0.02, 0.04, 2.0e-8);
+    let g = alpha * e;
+    // L = G (2U)^(1/4), M = W (2U)^(-1/2)
+    let u2 = (l / g).powi(4);
+    let u = 0.5 * u2;
+    let wd = m * u2.sqrt();
+    let w = wd * e * r;
+    let ue = u * e * r / eta0;
+    LineCase {
+        e,
+        r,
+        w,
+        ue,
+        b: units::hertz_line_half_width(w, r, e),
+        ph: units::hertz_line_pressure(w, r, e),
+        lub: lubricant(eta0, alpha, visc, dens),
+    }
+}
+
+pub fn solve_line(c: &LineCase, nx: usize, xin: f64, xout: f64) -> (EhlResult, Grid) {
+    solve_line_p(c, nx, xin, xout, &EhlParams::default())
+}
+
+pub fn solve_line_p(c: &LineCase, nx: usize, xin: f64, xout: f64, par: &EhlParams) -> (EhlResult, Grid) {
+    let grid = Grid::new(nx, 1, xin * c.b, xout * c.b, -0.5, 0.5);
+    let r = c.r;
+    let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
+    let e = c.e;
+    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
+    let prob = EhlProblem {
+        grid,
+        gap: &gap,
+        operator: &op,
+        load: c.w,
+        lubricant: &c.lub,
+        entrainment_speed: c.ue,
+        reduced_radius: c.r,
+        reduced_modulus: c.e,
+        hertz_half_width: c.b,
+        hertz_pressure: c.ph,
+        initial_pressure: None,
+    };
+    (solve_steady(&prob, par), grid)
+}
+
+fn centre_index(grid: &Grid) -> usize {
+    (0..grid.nx).min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs())).unwrap()
+}
+
+/// Mean-speed groups (W, U, G) of a case.
+fn groups(c: &LineCase) -> (f64, f64, f64) {
+    (c.w / (c.e * c.r), c.lub.viscosity * c.ue / (c.e * c.r), c.lub.pressure_viscosity_coefficient * c.e)
+}
+
+/// The (M, L) table of the film tests: M 10..100, L 3..20, restricted to realistic Hertz pressures
+/// (alpha p_h = L sqrt(M / 2 pi) <= ~40, i.e. p_h <= 2 GPa at alpha = 20 GPa^-1; see the report for
+/// M >= 300).
+const TABLE: [(f64, f64); 8] = [(10.0, 3.0), (20.0, 6.0), (20.0, 10.0), (50.0, 10.0), (100.0, 3.0), (100.0, 5.0), (100.0, 10.0), (30.0, 20.0)];
+
+/// Every field finite and an honest report, whatever the outcome: the solver is stopped after
+/// two Newton steps without continuation on a case that needs more (M = 100, L = 10 takes ~10),
+/// so it must say it did not converge and still return finite fields.
+#[test]
+fn reports_honestly_and_never_nan() {
+    let c = line_case(100.0, 10.0, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let par = EhlParams { max_iterations: 2, continuation: false, ..EhlParams::default() };
+    let (res, _) = solve_line_p(&c, 256, -4.5, 1.5, &par);
+    for (name, f) in [("p", &res.pressure), ("h", &res.film), ("eta", &res.viscosity), ("rho", &res.density)] {
+        assert!(f.iter().all(|v| v.is_finite()), "{name} not finite: {} {:?}", res.termination, &f[..4]);
+    }
+    assert!(res.residual.is_finite() && res.load_error.is_finite() && res.h0.is_finite());
+    assert!(!res.converged && res.termination != "converged", "{}", res.termination);
+    assert!(res.residual > par.tolerance);
+}
+
+/// Central film against Moes (Barus viscosity and an incompressible lubricant: the assumptions of
+/// the fit), 512 cells on [-4.5 b, 1.5 b]. 10 %: the accuracy claimed for the fit (Venner &
+/// Lubrecht 2000 ch. 4) plus the discretisation error (< 1 %, see the grid test).
+/// Also: converged to the default tolerance, load balance 1e-6, inflow = outflow (mass balance of
+/// the flux form to 1e-4 of the inflow).
+#[test]
+fn central_film_against_moes() {
+    let mut worst: f64 = 0.0;
+    for &(m, l) in &TABLE {
+        let c = line_case(m, l, ViscosityModel::Barus, DensityModel::Constant);
+        let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
+        assert!(res.converged, "M {m} L {l}: {}", res.termination);
+        assert!(res.load_error.abs() < 1e-6);
+        assert!((res.inflow - res.outflow).abs() < 1e-4 * res.inflow, "M {m} L {l}: {} vs {}", res.inflow, res.outflow);
+        let (w, u, g) = groups(&c);
+        let hm = ehl::reference::film::moes_line_central_film(w, u, g) * c.r;
+        let e = res.film[centre_index(&grid)] / hm - 1.0;
+        println!("M {m:5} L {l:4}: h_c / Moes = {:.4}  (Newton {}, GMRES {})", 1.0 + e, res.iterations, res.linear_iterations);
+        worst = worst.max(e.abs());
+        assert!(e.abs() < 0.10, "M {m} L {l}: {} vs {}", res.film[centre_index(&grid)], hm);
+    }
+    println!("worst deviation from Moes: {:.1} %", 100.0 * worst);
+}
+
+/// Minimum and central film against Pan & Hamrock (Roelands + Dowson-Higginson, the laws of that
+/// fit). 15 % on the minimum film: the fit's stated scatter (~5-10 %) plus the discretisation
+/// error of the outlet constriction at 512 cells (~1.5 %, grid test). The central film is printed
+/// only: Pan-Hamrock's central fit is 20 % off at L = 20 (Moes, above, is the central reference).
+#[test]
+fn films_against_pan_hamrock() {
+    for &(m, l) in &TABLE {
+        let c = line_case(m, l, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+        let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
+        assert!(res.converged, "M {m} L {l}: {}", res.termination);
+        let (w, u, g) = groups(&c);
+        let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
+        let rmin = hmin / (ehl::reference::film::pan_hamrock_min(w, u, g) * c.r);
+        let rc = res.film[centre_index(&grid)] / (ehl::reference::film::pan_hamrock_central(w, u, g) * c.r);
+        println!("M {m:5} L {l:4}: h_min / PH = {rmin:.4}, h_c / PH = {rc:.4}, p_h = {:.2} GPa", c.ph / 1e9);
+        assert!((rmin - 1.0).abs() < 0.15, "M {m} L {l}: h_min ratio {rmin}");
+    }
+}
+
+/// Grid convergence (M = 50, L = 10, Roelands + DH): central and minimum film change by less
+/// than 1 % between the two finest of 512, 1024, 2048 cells, and the change shrinks with refinement.
+#[test]
+fn grid_convergence() {
+    let c = line_case(50.0, 10.0, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let mut hs = vec![];
+    for &nx in &[512usize, 1024, 2048] {
+        let par = EhlParams::default();
+        let t = std::time::Instant::now();
+        let (res, grid) = solve_line_p(&c, nx, -4.5, 1.5, &par);
+        println!("nx {nx}: {} Newton {} GMRES {} in {:.2} s", res.termination, res.iterations, res.linear_iterations, t.elapsed().as_secs_f64());
+        assert!(res.converged, "nx {nx}: {}", res.termination);
+        let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
+        // the centre value by linear interpolation between the two cells around x = 0
+        let i = (0..grid.nx).find(|&i| grid.x(i) >= 0.0).unwrap();
+        let t = -grid.x(i - 1) / grid.dx;
+        let hc = res.film[i - 1] * (1.0 - t) + res.film[i] * t;
+        println!("nx {nx}: h_c {hc:.5e} h_min {hmin:.5e}");
+        hs.push((hc, hmin));
+    }
+    let d = |a: f64, b: f64| (a / b - 1.0).abs();
+    let (dc1, dm1) = (d(hs[1].0, hs[0].0), d(hs[1].1, hs[0].1));
+    let (dc2, dm2) = (d(hs[2].0, hs[1].0), d(hs[2].1, hs[1].1));
+    println!("changes: h_c {dc1:.4} -> {dc2:.4}, h_min {dm1:.4} -> {dm2:.4}");
+    assert!(dc2 < 0.01 && dm2 < 0.01);
+    assert!(dc2 <= dc1 + 1e-3 && dm2 <= dm1 + 1e-3);
+}
