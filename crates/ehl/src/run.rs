@@ -3,6 +3,7 @@
 
 use crate::case::{Case, Kind, Shape};
 use crate::dry::{DryParams, DryProblem};
+use crate::ehl::{EhlParams, EhlProblem};
 use crate::elastic::{guilbault_psi, BodyCompliance, Deflection, EndImages, FftDeflection};
 use crate::geometry::Geometry;
 use crate::grid::Grid;
@@ -127,14 +128,119 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
                 summary,
             }
         }
-        Kind::Ehl => {
-            return Err(Error::Solver("steady EHL is not built yet".into()));
-        }
+        Kind::Ehl => solve_ehl(case, &geometry, &factory, &gap, load, dry, summary, progress)?,
     };
     let mut solution = solution;
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
     progress.report(1.0, "done");
     Ok(solution)
+}
+
+/// Film value at (x, y) by bilinear interpolation between cell centres (clamped at the edges);
+/// `None` where a neighbouring cell has no material.
+fn film_at(grid: &Grid, h: &[f64], x: f64, y: f64) -> Option<f64> {
+    let fx = ((x - grid.x_min) / grid.dx - 0.5).clamp(0.0, (grid.nx - 1) as f64);
+    let fy = if grid.ny == 1 {
+        0.0
+    } else {
+        ((y - grid.y_min) / grid.dy - 0.5).clamp(0.0, (grid.ny - 1) as f64)
+    };
+    let (i0, j0) = (fx.floor() as usize, fy.floor() as usize);
+    let (i1, j1) = ((i0 + 1).min(grid.nx - 1), (j0 + 1).min(grid.ny - 1));
+    let (tx, ty) = (fx - i0 as f64, fy - j0 as f64);
+    let v = |i: usize, j: usize| h[grid.idx(i, j)];
+    let val = (1.0 - ty) * ((1.0 - tx) * v(i0, j0) + tx * v(i1, j0))
+        + ty * ((1.0 - tx) * v(i0, j1) + tx * v(i1, j1));
+    val.is_finite().then_some(val)
+}
+
+/// Steady EHL from the dry solution: the Reynolds solver, then the summary figures and, for a
+/// converged solution only, the friction integral.
+#[allow(clippy::too_many_arguments)]
+fn solve_ehl(
+    case: &Case,
+    geometry: &Geometry,
+    factory: &(dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
+    gap: &(dyn Fn(f64, f64) -> f64 + Sync),
+    load: f64,
+    dry: crate::dry::DryResult,
+    mut summary: Summary,
+    progress: &dyn Progress,
+) -> Result<Solution> {
+    let (lubricant, motion) = match (&case.lubricant, &case.motion) {
+        (Some(l), Some(m)) => (l, m),
+        _ => return Err(Error::Solver("an ehl case needs [lubricant] and [motion]".into())),
+    };
+    let grid = geometry.grid();
+    let hertz = geometry.hertz();
+    progress.report(0.1, "EHL");
+    let start = dry.converged.then_some(dry.pressure.as_slice());
+    let problem = EhlProblem {
+        grid,
+        gap,
+        operator: factory,
+        load,
+        lubricant,
+        entrainment_speed: motion.entrainment_speed,
+        reduced_radius: case.reduced_radius(),
+        reduced_modulus: case.reduced_modulus(),
+        hertz_half_width: hertz.b,
+        hertz_pressure: hertz.ph,
+        initial_pressure: start,
+    };
+    let params = EhlParams {
+        tolerance: case.solver.tolerance,
+        max_iterations: case.solver.max_iterations,
+        ..EhlParams::default()
+    };
+    let r = crate::ehl::solve_steady(&problem, &params);
+    let area = grid.cell_area();
+    summary.converged = r.converged;
+    summary.termination = r.termination.clone();
+    summary.iterations = r.iterations;
+    summary.residual = r.residual;
+    summary.load_n = r.pressure.iter().sum::<f64>() * area;
+    summary.load_error = (summary.load_n - load).abs() / load;
+    let (k, pmax) = argmax(&r.pressure);
+    summary.max_pressure_pa = pmax;
+    summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
+    summary.central_film_m = film_at(&grid, &r.film, 0.0, 0.0);
+    let (kmin, hmin) = r
+        .film
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| h.is_finite())
+        .fold((0, f64::INFINITY), |(k, m), (i, &h)| if h < m { (i, h) } else { (k, m) });
+    if hmin.is_finite() {
+        summary.min_film_m = Some(hmin);
+        summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);
+    }
+    // Friction only from a converged solution: a figure from a half-solved film would be noise.
+    if r.converged {
+        let f = crate::friction::friction(&crate::friction::FrictionInput {
+            grid: &grid,
+            pressure: &r.pressure,
+            film: &r.film,
+            viscosity: &r.viscosity,
+            u1: motion.u1(),
+            u2: motion.u2(),
+            rheology: &lubricant.rheology,
+            load,
+        })?;
+        summary.friction_force_n = Some(f.force);
+        summary.friction_coefficient = Some(f.coefficient);
+    }
+    Ok(Solution {
+        grid,
+        fields: Fields {
+            pressure: r.pressure,
+            deformation: r.deflection,
+            film: Some(r.film),
+            viscosity: Some(r.viscosity),
+            density: Some(r.density),
+        },
+        summary,
+    })
 }
 
 /// The text `ehl check` prints: derived quantities, dimensionless groups, classical film
