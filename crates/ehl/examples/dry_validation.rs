@@ -91,7 +91,11 @@ max_iterations = 500
     for per_b in [25usize, 50, 100, 200] {
         let nx = 3 * per_b;
         let c = case_text(line, &sets(&[("grid.nx", nx.to_string())]));
-        let (w, r, e) = (c.load.force_per_length, c.reduced_radius(), c.reduced_modulus());
+        let (w, r, e) = (
+            c.load.force_per_length,
+            c.reduced_radius(),
+            c.reduced_modulus(),
+        );
         let (ph, b) = (
             units::hertz_line_pressure(w, r, e),
             units::hertz_line_half_width(w, r, e),
@@ -109,7 +113,11 @@ max_iterations = 500
             s.summary.iterations
         );
         if per_b == 25 {
-            eprintln!("Hertz line: p_h = {:.4} GPa, b = {:.3} um", ph / 1e9, b * 1e6);
+            eprintln!(
+                "Hertz line: p_h = {:.4} GPa, b = {:.3} um",
+                ph / 1e9,
+                b * 1e6
+            );
         }
     }
 

@@ -30,12 +30,16 @@ const NYS: [usize; 4] = [64, 128, 256, 512];
 
 fn main() {
     let dir = out_dir("end_peak");
-    println!("Thesis Table 1.1 rollers, nx = {NX} (b / dx = 20), y over the roller length L = 4 mm.\n");
+    println!(
+        "Thesis Table 1.1 rollers, nx = {NX} (b / dx = 20), y over the roller length L = 4 mm.\n"
+    );
     println!("| correction | ny | dy (um) | max pressure (GPa) | at y (mm) | end-row max (GPa) | mid-length max (GPa) | approach (um) |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut peaks: Vec<Vec<(f64, f64)>> = vec![Vec::new(); VARIANTS.len()];
     let mut axial: Vec<Vec<(f64, f64)>> = vec![Vec::new(); VARIANTS.len()];
-    let mut csv = String::from("correction,ny,dy_m,max_pressure_pa,max_at_y_m,end_row_max_pa,mid_max_pa,approach_m\n");
+    let mut csv = String::from(
+        "correction,ny,dy_m,max_pressure_pa,max_at_y_m,end_row_max_pa,mid_max_pa,approach_m\n",
+    );
     for (v, (name, label)) in VARIANTS.iter().enumerate() {
         for &ny in &NYS {
             let c = case(
@@ -98,7 +102,9 @@ fn main() {
     let (lo, hi) = corrected
         .iter()
         .flatten()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
     let x_label = "cells along the roller axis, ny (L = 4 mm)";
     charts(
         &dir.join("end_peak.png"),

@@ -20,13 +20,38 @@ fn main() {
     let loads: Vec<f64> = (1..=10).map(|k| 1000.0 * k as f64).collect();
     let len = 0.010;
     let runs = [
-        ("dry_crowned", "crowned, 1 level + psi", 1usize, true, RGBColor(200, 40, 30)),
-        ("dry_log_profile", "log profile, 1 level + psi", 1, true, RGBColor(20, 90, 180)),
-        ("dry_crowned", "crowned, plain half-space", 0, false, RGBColor(240, 150, 130)),
-        ("dry_log_profile", "log profile, plain half-space", 0, false, RGBColor(130, 170, 230)),
+        (
+            "dry_crowned",
+            "crowned, 1 level + psi",
+            1usize,
+            true,
+            RGBColor(200, 40, 30),
+        ),
+        (
+            "dry_log_profile",
+            "log profile, 1 level + psi",
+            1,
+            true,
+            RGBColor(20, 90, 180),
+        ),
+        (
+            "dry_crowned",
+            "crowned, plain half-space",
+            0,
+            false,
+            RGBColor(240, 150, 130),
+        ),
+        (
+            "dry_log_profile",
+            "log profile, plain half-space",
+            0,
+            false,
+            RGBColor(130, 170, 230),
+        ),
     ];
     let mut series = Vec::new();
-    let mut csv = String::from("profile,mirror_levels,psi,load_n,approach_m,palmgren_m,max_pressure_pa\n");
+    let mut csv =
+        String::from("profile,mirror_levels,psi,load_n,approach_m,palmgren_m,max_pressure_pa\n");
     println!("| roller | Q (kN) | approach (um) | Palmgren (um) | ratio | p_max (GPa) |");
     println!("| --- | --- | --- | --- | --- | --- |");
     let mut fits = Vec::new();

@@ -51,7 +51,9 @@ pub fn row(s: &Solution, j: usize) -> Vec<f64> {
 
 /// Pressure along y in grid column `i`.
 pub fn column(s: &Solution, i: usize) -> Vec<f64> {
-    (0..s.grid.ny).map(|j| s.fields.pressure[s.grid.idx(i, j)]).collect()
+    (0..s.grid.ny)
+        .map(|j| s.fields.pressure[s.grid.idx(i, j)])
+        .collect()
 }
 
 /// Pressure along x at mid-length: the row through y = 0, or the mean of the two rows either
@@ -200,12 +202,19 @@ pub fn charts(
                         // dashes: every other segment of a finely sampled curve
                         let mut first = true;
                         for (_, w) in s.points.windows(2).enumerate().filter(|(k, _)| k % 2 == 0) {
-                            let a = c.draw_series(LineSeries::new(w.to_vec(), color.stroke_width(3)))?;
+                            let a =
+                                c.draw_series(LineSeries::new(w.to_vec(), color.stroke_width(3)))?;
                             if first {
                                 a.label(s.label.clone()).legend(move |(x, y)| {
                                     EmptyElement::at((x, y))
-                                        + PathElement::new(vec![(0, 0), (8, 0)], color.stroke_width(3))
-                                        + PathElement::new(vec![(14, 0), (22, 0)], color.stroke_width(3))
+                                        + PathElement::new(
+                                            vec![(0, 0), (8, 0)],
+                                            color.stroke_width(3),
+                                        )
+                                        + PathElement::new(
+                                            vec![(14, 0), (22, 0)],
+                                            color.stroke_width(3),
+                                        )
                                 });
                                 first = false;
                             }
