@@ -110,7 +110,7 @@ fn main() {
         .map(|q| (palmgren_approach(q, len) * 1e6, q))
         .collect();
     series.push(Series {
-        label: "Palmgren, one contact: 3.84e-5 Q^0.9 / L^0.8".into(),
+        label: "Palmgren, one contact: δ = 3.84e-5 Q^0.9 / L^0.8 (mm; Q in N, L in mm)".into(),
         points: law,
         color: RGBColor(30, 30, 30),
         dashed: true,
