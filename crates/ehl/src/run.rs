@@ -27,14 +27,19 @@ impl Progress for Silent {
 /// The elastic operator factory for a case: the plane-strain strip kernel for an infinite line
 /// contact, else the half-space with, for each finite roller, the mirror images about its free
 /// ends (`solver.mirror_levels`) carrying Guilbault's psi of that body's Poisson ratio when
-/// `solver.free_end_correction` is set.
+/// `solver.free_end_correction` is set. A skewed body 2 gets no images (its ends are not
+/// planes y = const).
 pub fn operator_factory(case: &Case, geometry: &Geometry) -> impl Fn(Grid) -> Box<dyn Deflection> + Sync {
     let e_red = case.reduced_modulus();
     let line = case.is_infinite_line();
     let mut bodies = Vec::new();
     for (k, body) in [(1usize, &case.body1), (2, &case.body2)] {
         let mut b = BodyCompliance::new(body.youngs_modulus, body.poisson_ratio);
-        if body.shape == Shape::Roller && case.solver.mirror_levels > 0 {
+        // A skewed body's free ends are slanted lines across the contact, which reflections
+        // about planes y = const cannot represent (they would wipe out real contact near the
+        // ends): body 2 of a skewed pair gets no images; body 1 keeps its own.
+        let skewed = k == 2 && case.alignment.skew != 0.0;
+        if body.shape == Shape::Roller && case.solver.mirror_levels > 0 && !skewed {
             if let Some(ends) = geometry.body_ends(k) {
                 b.images = Some(EndImages {
                     ends,

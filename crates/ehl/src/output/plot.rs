@@ -647,7 +647,7 @@ fn nonempty(lo: f64, hi: f64) -> Range<f64> {
     }
 }
 
-fn pmax_line(solution: &Solution) -> String {
+fn pmax_line(solution: &Solution, case: &Case) -> String {
     let s = &solution.summary;
     let mut t = format!(
         "p_max = {} GPa at x = {} mm",
@@ -659,8 +659,10 @@ fn pmax_line(solution: &Solution) -> String {
     }
     if s.hertz_pressure_pa > 0.0 {
         t += &format!(
-            "   (Hertz, dry: p_h = {} GPa, b = {} mm)",
+            "   (Hertz, dry: p_h = {} GPa, {} = {} mm)",
             fmt_sig(gpa(s.hertz_pressure_pa), 4),
+            // a ball's Hertz scale is its contact radius (semi-axis along x) a
+            if case.is_point() { "a" } else { "b" },
             fmt_sig(s.hertz_half_width_m * 1e3, 3)
         );
     }
@@ -763,7 +765,7 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
                 root,
                 &case.title,
                 &[
-                    format!("pressure, infinite line contact — {}", pmax_line(solution)),
+                    format!("pressure, infinite line contact — {}", pmax_line(solution, case)),
                     convergence_line(solution, case),
                 ],
                 x_range_mm(g),
@@ -779,7 +781,7 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
                 &MapSpec {
                     title: &case.title,
                     lines: vec![
-                        format!("pressure — {}", pmax_line(solution)),
+                        format!("pressure — {}", pmax_line(solution, case)),
                         convergence_line(solution, case),
                     ],
                     grid: g,
