@@ -305,10 +305,10 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         let group = p.values.get(1).map(|v| label(v)).unwrap_or_default();
         rows.push((x, group, json));
     }
-    let Some(&(key, axis, scale)) = PLOT_FIGURES
-        .iter()
-        .find(|(k, _, _)| rows.iter().any(|(_, _, j)| figure(j, k).parse::<f64>().is_ok()))
-    else {
+    let Some(&(key, axis, scale)) = PLOT_FIGURES.iter().find(|(k, _, _)| {
+        rows.iter()
+            .any(|(_, _, j)| figure(j, k).parse::<f64>().is_ok())
+    }) else {
         return Ok(());
     };
     let mut series: Vec<ehl::output::plot::Series> = Vec::new();
@@ -350,7 +350,10 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
     ehl::output::plot::write_xy(
         &path,
         title,
-        &format!("{} converged points; the numbers are in sweep.csv", rows.len()),
+        &format!(
+            "{} converged points; the numbers are in sweep.csv",
+            rows.len()
+        ),
         &format!("{}{unit}", first.key),
         axis,
         &series,

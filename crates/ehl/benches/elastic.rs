@@ -34,9 +34,11 @@ fn roller_with_images(c: &mut Criterion) {
         let mut op = FftDeflection::with_images(g, &[b, BodyCompliance::new(2.1e11, 0.3)]);
         let p = vec![1e9; g.len()];
         let mut w = vec![0.0; g.len()];
-        group.bench_with_input(BenchmarkId::new("256x2048_levels", levels), &levels, |bch, _| {
-            bch.iter(|| op.apply(&p, &mut w))
-        });
+        group.bench_with_input(
+            BenchmarkId::new("256x2048_levels", levels),
+            &levels,
+            |bch, _| bch.iter(|| op.apply(&p, &mut w)),
+        );
     }
     group.finish();
 }

@@ -22,7 +22,10 @@ pub struct Grid {
 impl Grid {
     /// A grid of `nx * ny` cells covering `[x_min, x_max] x [y_min, y_max]`.
     pub fn new(nx: usize, ny: usize, x_min: f64, x_max: f64, y_min: f64, y_max: f64) -> Self {
-        assert!(nx > 0 && ny > 0, "grid needs at least one cell per direction");
+        assert!(
+            nx > 0 && ny > 0,
+            "grid needs at least one cell per direction"
+        );
         Grid {
             nx,
             ny,

@@ -29,7 +29,10 @@ impl Progress for Silent {
 /// ends (`solver.mirror_levels`) carrying Guilbault's psi of that body's Poisson ratio when
 /// `solver.free_end_correction` is set. A skewed body 2 gets no images (its ends are not
 /// planes y = const).
-pub fn operator_factory(case: &Case, geometry: &Geometry) -> impl Fn(Grid) -> Box<dyn Deflection> + Sync {
+pub fn operator_factory(
+    case: &Case,
+    geometry: &Geometry,
+) -> impl Fn(Grid) -> Box<dyn Deflection> + Sync {
     let e_red = case.reduced_modulus();
     let line = case.is_infinite_line();
     let mut bodies = Vec::new();
@@ -65,9 +68,10 @@ pub fn operator_factory(case: &Case, geometry: &Geometry) -> impl Fn(Grid) -> Bo
 
 /// Index and value of the largest entry.
 fn argmax(v: &[f64]) -> (usize, f64) {
-    v.iter()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |(k, m), (i, &x)| if x > m { (i, x) } else { (k, m) })
+    v.iter().enumerate().fold(
+        (0, f64::NEG_INFINITY),
+        |(k, m), (i, &x)| if x > m { (i, x) } else { (k, m) },
+    )
 }
 
 /// Solves `case`. A solver that does not converge still returns a solution with
@@ -133,7 +137,9 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
                 summary,
             }
         }
-        Kind::Ehl => solve_ehl(case, &geometry, &factory, &gap, load, dry, summary, progress)?,
+        Kind::Ehl => solve_ehl(
+            case, &geometry, &factory, &gap, load, dry, summary, progress,
+        )?,
     };
     let mut solution = solution;
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
@@ -174,7 +180,11 @@ fn solve_ehl(
 ) -> Result<Solution> {
     let (lubricant, motion) = match (&case.lubricant, &case.motion) {
         (Some(l), Some(m)) => (l, m),
-        _ => return Err(Error::Solver("an ehl case needs [lubricant] and [motion]".into())),
+        _ => {
+            return Err(Error::Solver(
+                "an ehl case needs [lubricant] and [motion]".into(),
+            ))
+        }
     };
     let grid = geometry.grid();
     let hertz = geometry.hertz();
@@ -210,12 +220,18 @@ fn solve_ehl(
     summary.max_pressure_pa = pmax;
     summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
     summary.central_film_m = film_at(&grid, &r.film, 0.0, 0.0);
+    summary.mass_inflow_kg_s = Some(r.inflow);
+    summary.mass_outflow_kg_s = Some(r.outflow);
+    summary.side_leakage_kg_s = Some(r.side_leakage);
     let (kmin, hmin) = r
         .film
         .iter()
         .enumerate()
         .filter(|(_, h)| h.is_finite())
-        .fold((0, f64::INFINITY), |(k, m), (i, &h)| if h < m { (i, h) } else { (k, m) });
+        .fold(
+            (0, f64::INFINITY),
+            |(k, m), (i, &h)| if h < m { (i, h) } else { (k, m) },
+        );
     if hmin.is_finite() {
         summary.min_film_m = Some(hmin);
         summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);

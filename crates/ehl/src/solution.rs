@@ -51,6 +51,15 @@ pub struct Summary {
     pub friction_coefficient: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_force_n: Option<f64>,
+    /// ehl: lubricant mass flow into the pressurised zone through the inlet (kg/s; line: per m)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_inflow_kg_s: Option<f64>,
+    /// ehl: mass flow out through the outlet (cavitation boundary) (kg/s)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_outflow_kg_s: Option<f64>,
+    /// ehl: mass flow out through the sides (roller ends) (kg/s); inflow = outflow + side leakage
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub side_leakage_kg_s: Option<f64>,
 }
 
 /// A solved case.

@@ -13,8 +13,17 @@ fn ball(n: usize, precondition: bool, coarse_start: bool) -> ehl::dry::DryResult
     let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
     let op = dry_support::half_space(e_red);
     solve(
-        &DryProblem { grid, gap: &gap, operator: &op, load: f },
-        &DryParams { precondition, coarse_start, ..DryParams::default() },
+        &DryProblem {
+            grid,
+            gap: &gap,
+            operator: &op,
+            load: f,
+        },
+        &DryParams {
+            precondition,
+            coarse_start,
+            ..DryParams::default()
+        },
     )
 }
 

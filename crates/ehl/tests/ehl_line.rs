@@ -44,7 +44,13 @@ pub fn solve_line(c: &LineCase, nx: usize, xin: f64, xout: f64) -> (EhlResult, G
     solve_line_p(c, nx, xin, xout, &EhlParams::default())
 }
 
-pub fn solve_line_p(c: &LineCase, nx: usize, xin: f64, xout: f64, par: &EhlParams) -> (EhlResult, Grid) {
+pub fn solve_line_p(
+    c: &LineCase,
+    nx: usize,
+    xin: f64,
+    xout: f64,
+    par: &EhlParams,
+) -> (EhlResult, Grid) {
     let grid = Grid::new(nx, 1, xin * c.b, xout * c.b, -0.5, 0.5);
     let r = c.r;
     let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
@@ -67,32 +73,70 @@ pub fn solve_line_p(c: &LineCase, nx: usize, xin: f64, xout: f64, par: &EhlParam
 }
 
 fn centre_index(grid: &Grid) -> usize {
-    (0..grid.nx).min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs())).unwrap()
+    (0..grid.nx)
+        .min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs()))
+        .unwrap()
 }
 
 /// Mean-speed groups (W, U, G) of a case.
 fn groups(c: &LineCase) -> (f64, f64, f64) {
-    (c.w / (c.e * c.r), c.lub.viscosity * c.ue / (c.e * c.r), c.lub.pressure_viscosity_coefficient * c.e)
+    (
+        c.w / (c.e * c.r),
+        c.lub.viscosity * c.ue / (c.e * c.r),
+        c.lub.pressure_viscosity_coefficient * c.e,
+    )
 }
 
 /// The (M, L) table of the film tests: M 10..100, L 3..20, restricted to realistic Hertz pressures
 /// (alpha p_h = L sqrt(M / 2 pi) <= ~40, i.e. p_h <= 2 GPa at alpha = 20 GPa^-1; see the report for
 /// M >= 300).
-const TABLE: [(f64, f64); 8] = [(10.0, 3.0), (20.0, 6.0), (20.0, 10.0), (50.0, 10.0), (100.0, 3.0), (100.0, 5.0), (100.0, 10.0), (30.0, 20.0)];
+const TABLE: [(f64, f64); 8] = [
+    (10.0, 3.0),
+    (20.0, 6.0),
+    (20.0, 10.0),
+    (50.0, 10.0),
+    (100.0, 3.0),
+    (100.0, 5.0),
+    (100.0, 10.0),
+    (30.0, 20.0),
+];
 
 /// Every field finite and an honest report, whatever the outcome: the solver is stopped after
 /// two Newton steps without continuation on a case that needs more (M = 100, L = 10 takes ~10),
 /// so it must say it did not converge and still return finite fields.
 #[test]
 fn reports_honestly_and_never_nan() {
-    let c = line_case(100.0, 10.0, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
-    let par = EhlParams { max_iterations: 2, continuation: false, ..EhlParams::default() };
+    let c = line_case(
+        100.0,
+        10.0,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    );
+    let par = EhlParams {
+        max_iterations: 2,
+        continuation: false,
+        ..EhlParams::default()
+    };
     let (res, _) = solve_line_p(&c, 256, -4.5, 1.5, &par);
-    for (name, f) in [("p", &res.pressure), ("h", &res.film), ("eta", &res.viscosity), ("rho", &res.density)] {
-        assert!(f.iter().all(|v| v.is_finite()), "{name} not finite: {} {:?}", res.termination, &f[..4]);
+    for (name, f) in [
+        ("p", &res.pressure),
+        ("h", &res.film),
+        ("eta", &res.viscosity),
+        ("rho", &res.density),
+    ] {
+        assert!(
+            f.iter().all(|v| v.is_finite()),
+            "{name} not finite: {} {:?}",
+            res.termination,
+            &f[..4]
+        );
     }
     assert!(res.residual.is_finite() && res.load_error.is_finite() && res.h0.is_finite());
-    assert!(!res.converged && res.termination != "converged", "{}", res.termination);
+    assert!(
+        !res.converged && res.termination != "converged",
+        "{}",
+        res.termination
+    );
     assert!(res.residual > par.tolerance);
 }
 
@@ -109,13 +153,28 @@ fn central_film_against_moes() {
         let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
         assert!(res.converged, "M {m} L {l}: {}", res.termination);
         assert!(res.load_error.abs() < 1e-6);
-        assert!((res.inflow - res.outflow).abs() < 1e-4 * res.inflow, "M {m} L {l}: {} vs {}", res.inflow, res.outflow);
+        assert!(
+            (res.inflow - res.outflow).abs() < 1e-4 * res.inflow,
+            "M {m} L {l}: {} vs {}",
+            res.inflow,
+            res.outflow
+        );
         let (w, u, g) = groups(&c);
         let hm = ehl::reference::film::moes_line_central_film(w, u, g) * c.r;
         let e = res.film[centre_index(&grid)] / hm - 1.0;
-        println!("M {m:5} L {l:4}: h_c / Moes = {:.4}  (Newton {}, GMRES {})", 1.0 + e, res.iterations, res.linear_iterations);
+        println!(
+            "M {m:5} L {l:4}: h_c / Moes = {:.4}  (Newton {}, GMRES {})",
+            1.0 + e,
+            res.iterations,
+            res.linear_iterations
+        );
         worst = worst.max(e.abs());
-        assert!(e.abs() < 0.10, "M {m} L {l}: {} vs {}", res.film[centre_index(&grid)], hm);
+        assert!(
+            e.abs() < 0.10,
+            "M {m} L {l}: {} vs {}",
+            res.film[centre_index(&grid)],
+            hm
+        );
     }
     println!("worst deviation from Moes: {:.1} %", 100.0 * worst);
 }
@@ -127,14 +186,23 @@ fn central_film_against_moes() {
 #[test]
 fn films_against_pan_hamrock() {
     for &(m, l) in &TABLE {
-        let c = line_case(m, l, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+        let c = line_case(
+            m,
+            l,
+            ViscosityModel::Roelands,
+            DensityModel::DowsonHigginson,
+        );
         let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
         assert!(res.converged, "M {m} L {l}: {}", res.termination);
         let (w, u, g) = groups(&c);
         let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
         let rmin = hmin / (ehl::reference::film::pan_hamrock_min(w, u, g) * c.r);
-        let rc = res.film[centre_index(&grid)] / (ehl::reference::film::pan_hamrock_central(w, u, g) * c.r);
-        println!("M {m:5} L {l:4}: h_min / PH = {rmin:.4}, h_c / PH = {rc:.4}, p_h = {:.2} GPa", c.ph / 1e9);
+        let rc = res.film[centre_index(&grid)]
+            / (ehl::reference::film::pan_hamrock_central(w, u, g) * c.r);
+        println!(
+            "M {m:5} L {l:4}: h_min / PH = {rmin:.4}, h_c / PH = {rc:.4}, p_h = {:.2} GPa",
+            c.ph / 1e9
+        );
         assert!((rmin - 1.0).abs() < 0.15, "M {m} L {l}: h_min ratio {rmin}");
     }
 }
@@ -143,13 +211,24 @@ fn films_against_pan_hamrock() {
 /// than 1 % between the two finest of 512, 1024, 2048 cells, and the change shrinks with refinement.
 #[test]
 fn grid_convergence() {
-    let c = line_case(50.0, 10.0, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let c = line_case(
+        50.0,
+        10.0,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    );
     let mut hs = vec![];
     for &nx in &[512usize, 1024, 2048] {
         let par = EhlParams::default();
         let t = std::time::Instant::now();
         let (res, grid) = solve_line_p(&c, nx, -4.5, 1.5, &par);
-        println!("nx {nx}: {} Newton {} GMRES {} in {:.2} s", res.termination, res.iterations, res.linear_iterations, t.elapsed().as_secs_f64());
+        println!(
+            "nx {nx}: {} Newton {} GMRES {} in {:.2} s",
+            res.termination,
+            res.iterations,
+            res.linear_iterations,
+            t.elapsed().as_secs_f64()
+        );
         assert!(res.converged, "nx {nx}: {}", res.termination);
         let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
         // the centre value by linear interpolation between the two cells around x = 0

@@ -9,9 +9,22 @@ use ehl::units;
 
 /// Ball R on a flat: E' (Pa), load (N), u_e (m/s), eta0, alpha, on n x n cells over [-3a, 3a]^2.
 #[allow(clippy::too_many_arguments)]
-fn solve_ball(r: f64, e: f64, f: f64, ue: f64, eta0: f64, alpha: f64, n: usize) -> (EhlResult, Grid, f64, f64) {
+fn solve_ball(
+    r: f64,
+    e: f64,
+    f: f64,
+    ue: f64,
+    eta0: f64,
+    alpha: f64,
+    n: usize,
+) -> (EhlResult, Grid, f64, f64) {
     let hz = units::hertz_point(f, r, e);
-    let lub = lubricant(eta0, alpha, ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let lub = lubricant(
+        eta0,
+        alpha,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    );
     let a = hz.a;
     let grid = Grid::new(n, n, -3.0 * a, 3.0 * a, -3.0 * a, 3.0 * a);
     let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
@@ -64,7 +77,12 @@ fn ball_on_glass_against_ehl_fbns() {
     let hc = res.film[kc];
     let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
     let pmax = res.pressure.iter().cloned().fold(0.0, f64::max);
-    println!("h_c {:.1} nm (225.8), h_min {:.1} nm (125.5), p_max {:.4} GPa (0.388)", hc * 1e9, hmin * 1e9, pmax / 1e9);
+    println!(
+        "h_c {:.1} nm (225.8), h_min {:.1} nm (125.5), p_max {:.4} GPa (0.388)",
+        hc * 1e9,
+        hmin * 1e9,
+        pmax / 1e9
+    );
     assert!((hc / 225.8e-9 - 1.0).abs() < 0.03);
     assert!((hmin / 125.5e-9 - 1.0).abs() < 0.06);
 }
@@ -84,14 +102,26 @@ fn ball_against_hamrock_dowson() {
     let hm_ref = ehl::reference::film::hamrock_dowson_min(w, u, g, 1.0) * r;
     let hc = res.film[grid.idx(grid.nx / 2, grid.ny / 2)];
     let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
-    println!("h_c {:.1} nm vs HD {:.1}; h_min {:.1} nm vs HD {:.1}", hc * 1e9, hc_ref * 1e9, hmin * 1e9, hm_ref * 1e9);
+    println!(
+        "h_c {:.1} nm vs HD {:.1}; h_min {:.1} nm vs HD {:.1}",
+        hc * 1e9,
+        hc_ref * 1e9,
+        hmin * 1e9,
+        hm_ref * 1e9
+    );
     assert!((hc / hc_ref - 1.0).abs() < 0.15);
     assert!((hmin / hm_ref - 1.0).abs() < 0.15);
     let pmax = res.pressure.iter().cloned().fold(0.0, f64::max);
     for j in 0..grid.ny / 2 {
         for i in 0..grid.nx {
-            let (a, b) = (res.pressure[grid.idx(i, j)], res.pressure[grid.idx(i, grid.ny - 1 - j)]);
-            assert!((a - b).abs() < 1e-6 * pmax, "asymmetric at ({i}, {j}): {a} vs {b}");
+            let (a, b) = (
+                res.pressure[grid.idx(i, j)],
+                res.pressure[grid.idx(i, grid.ny - 1 - j)],
+            );
+            assert!(
+                (a - b).abs() < 1e-6 * pmax,
+                "asymmetric at ({i}, {j}): {a} vs {b}"
+            );
         }
     }
 }

@@ -4,7 +4,13 @@
 use ehl::reynolds::residual::{mass_flow, residual, Fields, ReynoldsGrid};
 
 fn grid(nx: usize, ny: usize, second_order: bool) -> ReynoldsGrid {
-    ReynoldsGrid { nx, ny, dx: 0.1, dy: 0.2, second_order }
+    ReynoldsGrid {
+        nx,
+        ny,
+        dx: 0.1,
+        dy: 0.2,
+        second_order,
+    }
 }
 
 /// Interior cells: central differences with constant eps reproduce a quadratic exactly, so
@@ -13,21 +19,37 @@ fn grid(nx: usize, ny: usize, second_order: bool) -> ReynoldsGrid {
 fn poiseuille_exact_on_quadratics() {
     let g = grid(12, 9, true);
     let n = g.nx * g.ny;
-    let (mut p, h, rho, eps, act) = (vec![0.0; n], vec![0.0; n], vec![1.0; n], vec![2.5; n], vec![true; n]);
+    let (mut p, h, rho, eps, act) = (
+        vec![0.0; n],
+        vec![0.0; n],
+        vec![1.0; n],
+        vec![2.5; n],
+        vec![true; n],
+    );
     for j in 0..g.ny {
         for i in 0..g.nx {
             let (x, y) = ((i as f64 + 0.5) * g.dx, (j as f64 + 0.5) * g.dy);
             p[j * g.nx + i] = 3.0 * x * x - 2.0 * y * y + x * y + 1.0;
         }
     }
-    let f = Fields { p: &p, rho: &rho, h: &h, eps: &eps, active: &act };
+    let f = Fields {
+        p: &p,
+        rho: &rho,
+        h: &h,
+        eps: &eps,
+        active: &act,
+    };
     let mut r = vec![0.0; n];
     residual(&g, &f, None, None, &mut r);
     for j in 1..g.ny - 1 {
         for i in 1..g.nx - 1 {
             // r = -L = -eps (6 - 4)
             let expect = -2.5 * (6.0 - 4.0);
-            assert!((r[j * g.nx + i] - expect).abs() < 1e-9 * expect.abs(), "{}", r[j * g.nx + i]);
+            assert!(
+                (r[j * g.nx + i] - expect).abs() < 1e-9 * expect.abs(),
+                "{}",
+                r[j * g.nx + i]
+            );
         }
     }
 }
@@ -44,17 +66,31 @@ fn couette_upwind_orders() {
         let h: Vec<f64> = (0..n)
             .map(|i| {
                 let x = (i as f64 + 0.5) * g.dx;
-                if quad { 1.0 + 2.0 * x + 3.0 * x * x } else { 1.0 + 2.0 * x }
+                if quad {
+                    1.0 + 2.0 * x + 3.0 * x * x
+                } else {
+                    1.0 + 2.0 * x
+                }
             })
             .collect();
-        let f = Fields { p: &p, rho: &rho, h: &h, eps: &eps, active: &act };
+        let f = Fields {
+            p: &p,
+            rho: &rho,
+            h: &h,
+            eps: &eps,
+            active: &act,
+        };
         let mut r = vec![0.0; n];
         residual(&g, &f, None, None, &mut r);
         for i in 2..n {
             let x = (i as f64 + 0.5) * g.dx;
             let exact = if quad { 2.0 + 6.0 * x } else { 2.0 };
             // r = -L = +d(rho H)/dX
-            assert!((r[i] - exact).abs() < 1e-9, "second {second} quad {quad} i {i}: {} vs {exact}", r[i]);
+            assert!(
+                (r[i] - exact).abs() < 1e-9,
+                "second {second} quad {quad} i {i}: {} vs {exact}",
+                r[i]
+            );
         }
     }
 }
@@ -69,7 +105,9 @@ fn flux_form_conserves_mass() {
     let n = g.nx * g.ny;
     let mut s: u64 = 12345;
     let mut rnd = || {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (s >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut p: Vec<f64> = (0..n).map(|_| 0.1 + rnd()).collect();
@@ -82,14 +120,26 @@ fn flux_form_conserves_mass() {
     }
     act[33] = false;
     p[33] = 0.0;
-    let f = Fields { p: &p, rho: &rho, h: &h, eps: &eps, active: &act };
+    let f = Fields {
+        p: &p,
+        rho: &rho,
+        h: &h,
+        eps: &eps,
+        active: &act,
+    };
     let mut r = vec![0.0; n];
     residual(&g, &f, None, None, &mut r);
-    let net: f64 = (0..n).filter(|&k| act[k] && p[k] > 0.0).map(|k| -r[k] * g.dx * g.dy).sum();
+    let net: f64 = (0..n)
+        .filter(|&k| act[k] && p[k] > 0.0)
+        .map(|k| -r[k] * g.dx * g.dy)
+        .sum();
     let m = mass_flow(&g, &f);
     let bal = m.inflow - m.outflow - m.side_leakage;
     let scale = m.inflow.abs() + m.outflow.abs() + m.side_leakage.abs();
     // every flow is non-trivial, so the identity is not 0 = 0
-    assert!(m.inflow.abs() > 1e-3 * scale && m.side_leakage.abs() > 1e-3 * scale, "{m:?}");
+    assert!(
+        m.inflow.abs() > 1e-3 * scale && m.side_leakage.abs() > 1e-3 * scale,
+        "{m:?}"
+    );
     assert!((net - bal).abs() < 1e-10 * scale, "{net} vs {bal} ({m:?})");
 }

@@ -8,10 +8,14 @@ use ehl::grid::Grid;
 
 /// Deterministic pseudo-random pressures in [0, 1) GPa (a small LCG keeps the test self-contained).
 fn pressures(n: usize, seed: u64) -> Vec<f64> {
-    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut s = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     (0..n)
         .map(|_| {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((s >> 11) as f64 / (1u64 << 53) as f64) * 1e9
         })
         .collect()
@@ -147,7 +151,11 @@ fn deflection_under_hertz_pressure_matches_johnson() {
     let mut op = FftDeflection::half_space(g, E_RED);
     let mut w = vec![0.0; g.len()];
     op.apply(&p, &mut w);
-    for &(i, j) in &[(n / 2, n / 2), (n / 2 + 20, n / 2), (n / 2 + 10, n / 2 + 15)] {
+    for &(i, j) in &[
+        (n / 2, n / 2),
+        (n / 2 + 20, n / 2),
+        (n / 2 + 10, n / 2 + 15),
+    ] {
         let (x, y) = (g.x(i), g.y(j));
         let exact = std::f64::consts::PI * p0 * (2.0 * a * a - x * x - y * y) / (2.0 * a * E_RED);
         let rel = (w[g.idx(i, j)] / exact - 1.0).abs();

@@ -43,11 +43,20 @@ fn ellipsoid_on_flat_matches_elliptical_hertz() {
     assert!(s.converged, "{}", s.termination);
     let h = hertz_elliptical(200.0, 0.010, 0.030, case.reduced_modulus());
     let rel = |a: f64, b: f64| (a / b - 1.0).abs();
-    assert!(rel(s.max_pressure_pa, h.p0) < 0.01, "p0 {} vs {}", s.max_pressure_pa, h.p0);
+    assert!(
+        rel(s.max_pressure_pa, h.p0) < 0.01,
+        "p0 {} vs {}",
+        s.max_pressure_pa,
+        h.p0
+    );
     assert!(rel(s.approach_m.unwrap(), h.approach) < 0.01, "approach");
     // contact area: pi a_x a_y, the staircase of cells adds O(dx / a) ~ 3 %
     let area = std::f64::consts::PI * h.a_x * h.a_y;
-    assert!(rel(s.contact_area_m2.unwrap(), area) < 0.05, "area {} vs {area}", s.contact_area_m2.unwrap());
+    assert!(
+        rel(s.contact_area_m2.unwrap(), area) < 0.05,
+        "area {} vs {area}",
+        s.contact_area_m2.unwrap()
+    );
     assert!(s.load_error < 1e-8);
 }
 

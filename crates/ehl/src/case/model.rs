@@ -29,13 +29,23 @@ pub enum Shape {
 pub enum Profile {
     Straight,
     /// circular crown of radius `crown_radius` (m) along y, centred at mid-length
-    Crowned { crown_radius: f64 },
+    Crowned {
+        crown_radius: f64,
+    },
     /// Lundberg logarithmic profile designed for load `load` (N) (ISO/TS 16281 form)
-    Logarithmic { load: f64 },
+    Logarithmic {
+        load: f64,
+    },
     /// straight centre, circular-arc ends of radius `edge_radius` over `edge_length` at each end
-    RoundedEdge { edge_length: f64, edge_radius: f64 },
+    RoundedEdge {
+        edge_length: f64,
+        edge_radius: f64,
+    },
     /// straight centre, straight chamfer of angle `angle` (rad) over `edge_length` at each end
-    Chamfer { edge_length: f64, angle: f64 },
+    Chamfer {
+        edge_length: f64,
+        angle: f64,
+    },
 }
 
 /// One body (`[body1]`, `[body2]`).

@@ -151,7 +151,14 @@ struct StageEnd {
 /// relaxation (dtau_k+1 = dtau_k ||R_k|| / ||R_k+1||) so the iteration turns into Newton as
 /// the residual falls; each step is then backtracked on ||R||_2, and a step that does not
 /// reduce ||R|| is retried with dtau / 4.
-fn newton(sys: &mut System, st: &mut State, tol: f64, dtau0: f64, par: &EhlParams, stats: &mut Stats) -> StageEnd {
+fn newton(
+    sys: &mut System,
+    st: &mut State,
+    tol: f64,
+    dtau0: f64,
+    par: &EhlParams,
+    stats: &mut Stats,
+) -> StageEnd {
     let n = sys.n();
     let mut c = vec![0.0; n];
     let mut set = vec![false; n];
@@ -193,7 +200,9 @@ fn newton(sys: &mut System, st: &mut State, tol: f64, dtau0: f64, par: &EhlParam
                 // Eisenstat & Walker (1996) choice 2, safeguarded to [1e-4, 1e-2]
                 eta = (0.9 * (merit / pm).powi(2)).clamp(1e-4, 1e-2);
                 // switched evolution relaxation, at least doubled after a full step
-                dtau *= (pm / merit).min(100.0).max(if full_step { 2.0 } else { 0.0 });
+                dtau *= (pm / merit)
+                    .min(100.0)
+                    .max(if full_step { 2.0 } else { 0.0 });
             }
             prev_merit = Some(merit);
             // exact H0 column
@@ -203,9 +212,16 @@ fn newton(sys: &mut System, st: &mut State, tol: f64, dtau0: f64, par: &EhlParam
             }
         }
         if it >= par.max_iterations {
-            break (false, format!("no convergence in {} Newton steps", par.max_iterations));
+            break (
+                false,
+                format!("no convergence in {} Newton steps", par.max_iterations),
+            );
         }
-        let shift = if dtau.is_finite() && dtau < 1e12 { 1.0 / dtau } else { 0.0 };
+        let shift = if dtau.is_finite() && dtau < 1e12 {
+            1.0 / dtau
+        } else {
+            0.0
+        };
         let Some(pc) = Preconditioner::new(sys, st, &c, &set, &bcol, shift) else {
             break (false, String::from("singular preconditioner"));
         };
@@ -290,7 +306,13 @@ fn newton(sys: &mut System, st: &mut State, tol: f64, dtau0: f64, par: &EhlParam
 }
 
 /// Plain Newton from `st`; if it fails, pseudo-transient continuation from the same start.
-fn solve_from(sys: &mut System, st: &mut State, tol: f64, par: &EhlParams, stats: &mut Stats) -> StageEnd {
+fn solve_from(
+    sys: &mut System,
+    st: &mut State,
+    tol: f64,
+    par: &EhlParams,
+    stats: &mut Stats,
+) -> StageEnd {
     let start = st.clone();
     let e = newton(sys, st, tol, f64::INFINITY, par, stats);
     if e.converged || !par.pseudo_time_step.is_finite() {
@@ -300,9 +322,15 @@ fn solve_from(sys: &mut System, st: &mut State, tol: f64, par: &EhlParams, stats
     let e2 = newton(sys, &mut st2, tol, par.pseudo_time_step, par, stats);
     if e2.converged || e2.residual < e.residual {
         *st = st2;
-        StageEnd { reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason), ..e2 }
+        StageEnd {
+            reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason),
+            ..e2
+        }
     } else {
-        StageEnd { reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason), ..e }
+        StageEnd {
+            reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason),
+            ..e
+        }
     }
 }
 
@@ -328,7 +356,11 @@ fn film_guess(p: &EhlProblem, alpha: f64, point: bool) -> f64 {
     if point {
         film::hamrock_dowson_central(p.load / (e * r * r), u, g, 1.0)
     } else {
-        let wl = if p.grid.ny == 1 { p.load } else { p.load / (p.grid.y_max() - p.grid.y_min) };
+        let wl = if p.grid.ny == 1 {
+            p.load
+        } else {
+            p.load / (p.grid.y_max() - p.grid.y_min)
+        };
         film::moes_line_central_film(wl / (e * r), u, g)
     }
 }
@@ -342,9 +374,17 @@ fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
     let point = is_point(problem);
     let mut st = State::new(n);
     match problem.initial_pressure {
-        Some(p0) if grid == problem.grid && p0.len() == n && p0.iter().any(|v| v.is_finite() && *v > 0.0) => {
+        Some(p0)
+            if grid == problem.grid
+                && p0.len() == n
+                && p0.iter().any(|v| v.is_finite() && *v > 0.0) =>
+        {
             for k in 0..n {
-                st.p[k] = if sys.active[k] && p0[k].is_finite() { (p0[k] / problem.hertz_pressure).max(0.0) } else { 0.0 };
+                st.p[k] = if sys.active[k] && p0[k].is_finite() {
+                    (p0[k] / problem.hertz_pressure).max(0.0)
+                } else {
+                    0.0
+                };
             }
         }
         _ => {
@@ -355,7 +395,11 @@ fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
                     let x = grid.x(i) / b;
                     let y = if point { (grid.y(j) - ymid) / b } else { 0.0 };
                     let s = 1.0 - x * x - y * y;
-                    st.p[k] = if sys.active[k] && s > 0.0 { s.sqrt() } else { 0.0 };
+                    st.p[k] = if sys.active[k] && s > 0.0 {
+                        s.sqrt()
+                    } else {
+                        0.0
+                    };
                 }
             }
         }
@@ -367,9 +411,17 @@ fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
     }
     st.h0 = 0.0;
     sys.eval(&mut st);
-    let hc = film_guess(problem, alpha, point) * problem.reduced_radius / (b * b / problem.reduced_radius);
-    let kmax = (0..n).filter(|&k| sys.active[k]).max_by(|&a, &b| st.p[a].total_cmp(&st.p[b])).unwrap_or(0);
-    st.h0 = if hc.is_finite() { hc - st.h[kmax] } else { -st.h[kmax] };
+    let hc = film_guess(problem, alpha, point) * problem.reduced_radius
+        / (b * b / problem.reduced_radius);
+    let kmax = (0..n)
+        .filter(|&k| sys.active[k])
+        .max_by(|&a, &b| st.p[a].total_cmp(&st.p[b]))
+        .unwrap_or(0);
+    st.h0 = if hc.is_finite() {
+        hc - st.h[kmax]
+    } else {
+        -st.h[kmax]
+    };
     sys.eval_film(&mut st);
     st
 }
@@ -391,7 +443,14 @@ fn coarser(g: Grid) -> Option<Grid> {
     let ok_x = g.nx >= 256 && g.nx % 2 == 0;
     let ok_y = g.ny == 1 || (g.ny % 2 == 0 && g.ny >= 64);
     (ok_x && ok_y).then(|| {
-        Grid::new(g.nx / 2, if g.ny == 1 { 1 } else { g.ny / 2 }, g.x_min, g.x_max(), g.y_min, g.y_max())
+        Grid::new(
+            g.nx / 2,
+            if g.ny == 1 { 1 } else { g.ny / 2 },
+            g.x_min,
+            g.x_max(),
+            g.y_min,
+            g.y_max(),
+        )
     })
 }
 
@@ -404,7 +463,11 @@ fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
         (i, i1, s - i as f64)
     };
     for j in 0..fg.ny {
-        let (j0, j1, ty) = if fg.ny == 1 { (0, 0, 0.0) } else { pos(fg.y(j), cg.y_min, cg.dy, cg.ny) };
+        let (j0, j1, ty) = if fg.ny == 1 {
+            (0, 0, 0.0)
+        } else {
+            pos(fg.y(j), cg.y_min, cg.dy, cg.ny)
+        };
         for i in 0..fg.nx {
             let (i0, i1, tx) = pos(fg.x(i), cg.x_min, cg.dx, cg.nx);
             let a = v[cg.idx(i0, j0)] * (1.0 - tx) + v[cg.idx(i1, j0)] * tx;
@@ -417,20 +480,38 @@ fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
 /// Solve on `grid`: grid sequencing (the solution on the grid twice as coarse, interpolated, as
 /// the start) when the grid is fine and no initial pressure is given; otherwise, or if that
 /// fails, from the Hertz/dry start with continuation in alpha.
-fn solve_grid(problem: &EhlProblem, grid: Grid, params: &EhlParams, stats: &mut Stats) -> (System, State, StageEnd) {
+fn solve_grid(
+    problem: &EhlProblem,
+    grid: Grid,
+    params: &EhlParams,
+    stats: &mut Stats,
+) -> (System, State, StageEnd) {
     let b = problem.hertz_half_width;
     let r = problem.reduced_radius;
     let ph = problem.hertz_pressure;
     let lub = problem.lubricant;
     let lambda = 12.0 * problem.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph);
-    let phys = Physics { lubricant: lub.clone(), ph, lambda };
+    let phys = Physics {
+        lubricant: lub.clone(),
+        ph,
+        lambda,
+    };
     if problem.initial_pressure.is_none() {
         if let Some(cg) = coarser(grid) {
             let (csys, cst, cend) = solve_grid(problem, cg, params, stats);
             stats.applies += csys.applies;
             if cend.converged {
                 let op = (problem.operator)(grid);
-                let mut sys = System::new(grid, op, problem.gap, b, r, phys.clone(), problem.load, params.band.max(1));
+                let mut sys = System::new(
+                    grid,
+                    op,
+                    problem.gap,
+                    b,
+                    r,
+                    phys.clone(),
+                    problem.load,
+                    params.band.max(1),
+                );
                 let mut st = State::new(grid.len());
                 interpolate(&cg, &cst.p, &grid, &mut st.p);
                 st.h0 = cst.h0;
@@ -453,12 +534,27 @@ fn solve_grid(problem: &EhlProblem, grid: Grid, params: &EhlParams, stats: &mut 
 }
 
 /// Solve on `grid` from the Hertz/dry start, with continuation in alpha if Newton fails.
-fn solve_direct(problem: &EhlProblem, grid: Grid, phys: Physics, params: &EhlParams, stats: &mut Stats) -> (System, State, StageEnd) {
+fn solve_direct(
+    problem: &EhlProblem,
+    grid: Grid,
+    phys: Physics,
+    params: &EhlParams,
+    stats: &mut Stats,
+) -> (System, State, StageEnd) {
     let b = problem.hertz_half_width;
     let r = problem.reduced_radius;
     let alpha = problem.lubricant.pressure_viscosity_coefficient;
     let op = (problem.operator)(grid);
-    let mut sys = System::new(grid, op, problem.gap, b, r, phys, problem.load, params.band.max(1));
+    let mut sys = System::new(
+        grid,
+        op,
+        problem.gap,
+        b,
+        r,
+        phys,
+        problem.load,
+        params.band.max(1),
+    );
 
     let mut st = start(problem, &mut sys, alpha);
     let initial = st.clone();
@@ -484,7 +580,11 @@ fn solve_direct(problem: &EhlProblem, grid: Grid, phys: Physics, params: &EhlPar
                 s
             };
             stats.stages += 1;
-            let tol = if last { params.tolerance } else { params.tolerance.max(1e-3) };
+            let tol = if last {
+                params.tolerance
+            } else {
+                params.tolerance.max(1e-3)
+            };
             let e = solve_from(&mut sys, &mut cur, tol, params, stats);
             if e.converged {
                 done = f;
@@ -500,7 +600,10 @@ fn solve_direct(problem: &EhlProblem, grid: Grid, phys: Physics, params: &EhlPar
                 step *= 0.5;
                 if step < 1.0 / 64.0 {
                     end = StageEnd {
-                        reason: format!("{first_reason}; continuation in alpha stalled at {:.3} alpha: {}", done, e.reason),
+                        reason: format!(
+                            "{first_reason}; continuation in alpha stalled at {:.3} alpha: {}",
+                            done, e.reason
+                        ),
                         ..e
                     };
                     // the best full-alpha state is the direct attempt's
@@ -517,7 +620,13 @@ fn solve_direct(problem: &EhlProblem, grid: Grid, phys: Physics, params: &EhlPar
     (sys, st, end)
 }
 
-fn finish(problem: &EhlProblem, sys: &mut System, mut st: State, end: StageEnd, stats: &Stats) -> EhlResult {
+fn finish(
+    problem: &EhlProblem,
+    sys: &mut System,
+    mut st: State,
+    end: StageEnd,
+    stats: &Stats,
+) -> EhlResult {
     let b = problem.hertz_half_width;
     let r = problem.reduced_radius;
     let ph = problem.hertz_pressure;
@@ -528,10 +637,26 @@ fn finish(problem: &EhlProblem, sys: &mut System, mut st: State, end: StageEnd, 
     let fin = |v: f64| if v.is_finite() { v } else { f64::MAX };
     let mut out = EhlResult {
         pressure: st.p.iter().map(|p| p * ph).collect(),
-        film: (0..n).map(|k| if sys.active[k] { st.h[k] * hs } else { f64::INFINITY }).collect(),
+        film: (0..n)
+            .map(|k| {
+                if sys.active[k] {
+                    st.h[k] * hs
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .collect(),
         deflection: st.def.iter().map(|d| d * hs).collect(),
-        viscosity: st.p.iter().map(|&p| fin(lub.viscosity * sys.phys.eta(p))).collect(),
-        density: st.p.iter().map(|&p| lub.density * sys.phys.rho(p)).collect(),
+        viscosity: st
+            .p
+            .iter()
+            .map(|&p| fin(lub.viscosity * sys.phys.eta(p)))
+            .collect(),
+        density: st
+            .p
+            .iter()
+            .map(|&p| lub.density * sys.phys.rho(p))
+            .collect(),
         h0: st.h0 * hs,
         iterations: stats.newton,
         linear_iterations: stats.gmres,

@@ -92,11 +92,23 @@ impl State {
     }
 
     pub fn fields<'a>(&'a self, active: &'a [bool]) -> Fields<'a> {
-        Fields { p: &self.p, rho: &self.rho, h: &self.h, eps: &self.eps, active }
+        Fields {
+            p: &self.p,
+            rho: &self.rho,
+            h: &self.h,
+            eps: &self.eps,
+            active,
+        }
     }
 
     pub fn is_finite(&self) -> bool {
-        self.h0.is_finite() && self.p.iter().chain(&self.h).chain(&self.f).all(|v| v.is_finite())
+        self.h0.is_finite()
+            && self
+                .p
+                .iter()
+                .chain(&self.h)
+                .chain(&self.f)
+                .all(|v| v.is_finite())
     }
 }
 
@@ -162,7 +174,9 @@ impl System {
     ) -> System {
         let n = grid.len();
         let hscale = r / (b * b);
-        let khat = (0..=band).map(|d| op.coefficient(d as isize, 0) * phys.ph * hscale).collect();
+        let khat = (0..=band)
+            .map(|d| op.coefficient(d as isize, 0) * phys.ph * hscale)
+            .collect();
         let mut g = vec![0.0; n];
         let mut active = vec![true; n];
         for j in 0..grid.ny {
@@ -176,7 +190,13 @@ impl System {
                 }
             }
         }
-        let rg = ReynoldsGrid { nx: grid.nx, ny: grid.ny, dx: grid.dx / b, dy: grid.dy / b, second_order: true };
+        let rg = ReynoldsGrid {
+            nx: grid.nx,
+            ny: grid.ny,
+            dx: grid.dx / b,
+            dy: grid.dy / b,
+            second_order: true,
+        };
         let load = load_si / (phys.ph * b * b);
         let n_mat = active.iter().filter(|&&a| a).count();
         System {
@@ -284,10 +304,22 @@ impl System {
             lin.dq[k] = drho * h + rho * dh;
         }
         // Pois(P, d eps): Couette switched off by rho H = 0
-        let f1 = Fields { p: &st.p, rho: &lin.zeros, h: &lin.zeros, eps: &lin.deps, active: &self.active };
+        let f1 = Fields {
+            p: &st.p,
+            rho: &lin.zeros,
+            h: &lin.zeros,
+            eps: &lin.deps,
+            active: &self.active,
+        };
         residual::residual(&self.rg, &f1, None, None, out);
         // Pois(v, eps) - Couette(dq): rho = dq, H = 1
-        let f2 = Fields { p: &lin.dp, rho: &lin.dq, h: &lin.ones, eps: &st.eps, active: &self.active };
+        let f2 = Fields {
+            p: &lin.dp,
+            rho: &lin.dq,
+            h: &lin.ones,
+            eps: &st.eps,
+            active: &self.active,
+        };
         residual::residual(&self.rg, &f2, None, None, &mut lin.tmp);
         for (o, t) in out.iter_mut().zip(&lin.tmp) {
             *o += t;
@@ -366,7 +398,9 @@ impl System {
                 }
                 let r = (st.p[k] / c[k]).min(st.f[k]);
                 num += r * r;
-                let w = (residual::couette_east(rg, &f, i, j) - residual::couette_west(rg, &f, i, j)) / rg.dx;
+                let w = (residual::couette_east(rg, &f, i, j)
+                    - residual::couette_west(rg, &f, i, j))
+                    / rg.dx;
                 den += w * w;
             }
         }
@@ -394,13 +428,22 @@ impl Preconditioner {
     /// Assemble and factor at the state `st` with scaling `c` and active set `set`;
     /// `bcol` = dR/dH0 (length n). Returns None if a line matrix is singular.
     /// `shift` is the pseudo-transient diagonal 1/dtau on the Reynolds rows.
-    pub fn new(sys: &System, st: &State, c: &[f64], set: &[bool], bcol: &[f64], shift: f64) -> Option<Preconditioner> {
+    pub fn new(
+        sys: &System,
+        st: &State,
+        c: &[f64],
+        set: &[bool],
+        bcol: &[f64],
+        shift: f64,
+    ) -> Option<Preconditioner> {
         let rg = sys.rg;
         let (nx, ny) = (rg.nx, rg.ny);
         let band = sys.khat.len() - 1;
         let (kl, ku) = (band + 2, band + 1);
         let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
-        let mut lines: Vec<Banded> = (0..ny).map(|_| Banded::new(nx, kl.min(nx - 1), ku.min(nx - 1))).collect();
+        let mut lines: Vec<Banded> = (0..ny)
+            .map(|_| Banded::new(nx, kl.min(nx - 1), ku.min(nx - 1)))
+            .collect();
         let (active, khat, phys) = (&sys.active[..], &sys.khat[..], &sys.phys);
         let ok = lines.par_iter_mut().enumerate().all(|(j, m)| {
             let f = st.fields(active);
@@ -458,7 +501,11 @@ impl Preconditioner {
                         continue;
                     }
                     let pm = st.p[km];
-                    m.add(i, im, ck * g * e * (phys.drho(pm) / st.rho[km] - phys.dlneta(pm)));
+                    m.add(
+                        i,
+                        im,
+                        ck * g * e * (phys.drho(pm) / st.rho[km] - phys.dlneta(pm)),
+                    );
                     let hm = st.h[km];
                     if hm > 0.0 {
                         let lo = im.saturating_sub(band);
@@ -513,11 +560,17 @@ impl Preconditioner {
     }
 
     fn solve_lines(&self, v: &mut [f64]) {
-        v.par_chunks_mut(self.nx).zip(&self.lines).for_each(|(seg, m)| m.solve(seg));
+        v.par_chunks_mut(self.nx)
+            .zip(&self.lines)
+            .for_each(|(seg, m)| m.solve(seg));
     }
 
     fn masked_sum(&self, v: &[f64]) -> f64 {
-        v.iter().zip(&self.active).filter(|(_, &a)| a).map(|(x, _)| x).sum()
+        v.iter()
+            .zip(&self.active)
+            .filter(|(_, &a)| a)
+            .map(|(x, _)| x)
+            .sum()
     }
 
     /// out = M^-1 r (length n + 1; the last entry is H0).
@@ -557,5 +610,10 @@ pub(crate) fn jacobian_product(
         }
     }
     let w = sys.load_scale() * sys.area;
-    out[n] = w * v[..n].iter().zip(&sys.active).filter(|(_, &a)| a).map(|(x, _)| x).sum::<f64>();
+    out[n] = w * v[..n]
+        .iter()
+        .zip(&sys.active)
+        .filter(|(_, &a)| a)
+        .map(|(x, _)| x)
+        .sum::<f64>();
 }

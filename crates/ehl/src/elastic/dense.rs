@@ -75,7 +75,8 @@ impl Deflection for DenseDeflection {
                         if pk == 0.0 {
                             continue;
                         }
-                        s += pk * self.coefficient(i as isize - k as isize, j as isize - l as isize);
+                        s +=
+                            pk * self.coefficient(i as isize - k as isize, j as isize - l as isize);
                         let (x, y) = (g.x(i) - g.x(k), g.y(j));
                         for &(sign, shift, w) in &self.images {
                             let yl = sign * g.y(l) + shift;

@@ -57,7 +57,10 @@ pub fn rectangle_table(nx: usize, ny: usize, dx: f64, dy: f64, t: f64) -> Vec<f6
     let (wx, wy) = (2 * nx - 1, 2 * ny - 1);
     let mut table = vec![0.0; wx * wy];
     table.par_chunks_mut(wx).enumerate().for_each(|(r, row)| {
-        let (lo, hi) = (&corners[r * cx..(r + 1) * cx], &corners[(r + 1) * cx..(r + 2) * cx]);
+        let (lo, hi) = (
+            &corners[r * cx..(r + 1) * cx],
+            &corners[(r + 1) * cx..(r + 2) * cx],
+        );
         for (c, v) in row.iter_mut().enumerate() {
             *v = hi[c + 1] - lo[c + 1] - hi[c] + lo[c];
         }
@@ -114,9 +117,13 @@ mod tests {
         let table = rectangle_table(nx, ny, dx, dy, t);
         for dj in -(ny as isize - 1)..ny as isize {
             for di in -(nx as isize - 1)..nx as isize {
-                let k = (dj + ny as isize - 1) as usize * (2 * nx - 1) + (di + nx as isize - 1) as usize;
+                let k = (dj + ny as isize - 1) as usize * (2 * nx - 1)
+                    + (di + nx as isize - 1) as usize;
                 let direct = rectangle(di as f64 * dx, dj as f64 * dy - t, dx / 2.0, dy / 2.0);
-                assert!((table[k] - direct).abs() < 1e-13 * (1.0 + direct.abs()), "{di} {dj}");
+                assert!(
+                    (table[k] - direct).abs() < 1e-13 * (1.0 + direct.abs()),
+                    "{di} {dj}"
+                );
             }
         }
     }

@@ -198,11 +198,14 @@ impl Convolver {
     /// Forward transform of the grid field `p` (ny * nx), rows reversed if `flip`, into `self.spec`.
     fn forward(&mut self, p: &[f64], flip: bool) {
         let (nx, ny, px, hx, py) = (self.nx, self.ny, self.px, self.hx, self.py);
-        self.real.par_chunks_mut(px).enumerate().for_each(|(j, row)| {
-            let src = if flip { ny - 1 - j } else { j };
-            row[..nx].copy_from_slice(&p[src * nx..(src + 1) * nx]);
-            row[nx..].iter_mut().for_each(|v| *v = 0.0);
-        });
+        self.real
+            .par_chunks_mut(px)
+            .enumerate()
+            .for_each(|(j, row)| {
+                let src = if flip { ny - 1 - j } else { j };
+                row[..nx].copy_from_slice(&p[src * nx..(src + 1) * nx]);
+                row[nx..].iter_mut().for_each(|v| *v = 0.0);
+            });
         let r2c = self.r2c.clone();
         self.real
             .par_chunks_mut(px)
@@ -357,7 +360,9 @@ impl FftDeflection {
             let mut acc = vec![0.0; wx * wy];
             for &(t, w) in terms {
                 let table = kernel::rectangle_table(nx, ny, dx, dy, t);
-                acc.par_iter_mut().zip(table.par_iter()).for_each(|(s, v)| *s += w * v);
+                acc.par_iter_mut()
+                    .zip(table.par_iter())
+                    .for_each(|(s, v)| *s += w * v);
             }
             acc
         };
@@ -429,7 +434,11 @@ impl InverseHalfSpace {
             for (r, v) in col.iter_mut().enumerate() {
                 let kk = k2(c, px, grid.dx) + if line { 0.0 } else { k2(r, py, grid.dy) };
                 let k = if kk > 0.0 { kk.sqrt() } else { kmin };
-                let symbol = if line { e_red * k / 2.0 } else { e_red * k / 4.0 };
+                let symbol = if line {
+                    e_red * k / 2.0
+                } else {
+                    e_red * k / 4.0
+                };
                 *v = Complex::new(symbol * scale, 0.0);
             }
         }

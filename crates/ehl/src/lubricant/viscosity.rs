@@ -71,7 +71,8 @@ mod tests {
         let l = lub(ViscosityModel::Roelands);
         assert!((log_viscosity_derivative(&l, 0.0) / 15.9e-9 - 1.0).abs() < 1e-12);
         let h = 1e3;
-        let fd = (log_relative_viscosity(&l, 1e3 + h) - log_relative_viscosity(&l, 1e3 - h)) / (2.0 * h);
+        let fd =
+            (log_relative_viscosity(&l, 1e3 + h) - log_relative_viscosity(&l, 1e3 - h)) / (2.0 * h);
         assert!((fd / 15.9e-9 - 1.0).abs() < 1e-4);
     }
 

@@ -765,7 +765,10 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
                 root,
                 &case.title,
                 &[
-                    format!("pressure, infinite line contact — {}", pmax_line(solution, case)),
+                    format!(
+                        "pressure, infinite line contact — {}",
+                        pmax_line(solution, case)
+                    ),
                     convergence_line(solution, case),
                 ],
                 x_range_mm(g),
@@ -1082,7 +1085,12 @@ pub fn write_xy(
         return Err(draw_err(path, "no finite point to draw"));
     }
     let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
         |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
     );
     let pad = |lo: &mut f64, hi: &mut f64| {

@@ -20,7 +20,14 @@ impl Banded {
     /// Zero `n x n` matrix with `kl` sub- and `ku` super-diagonals.
     pub fn new(n: usize, kl: usize, ku: usize) -> Self {
         let w = 2 * kl + ku + 1;
-        Banded { n, kl, ku, w, a: vec![0.0; n * w], piv: vec![0; n] }
+        Banded {
+            n,
+            kl,
+            ku,
+            w,
+            a: vec![0.0; n * w],
+            piv: vec![0; n],
+        }
     }
 
     /// Order of the matrix.
@@ -140,7 +147,9 @@ mod tests {
     fn solves_with_pivoting() {
         let mut s: u64 = 7;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
         for &(n, kl, ku) in &[(1, 0, 0), (5, 1, 1), (40, 6, 4), (33, 2, 5), (8, 7, 7)] {
@@ -161,7 +170,10 @@ mod tests {
             m.solve(&mut x);
             for i in 0..n {
                 let ax: f64 = (0..n).map(|j| dense[i * n + j] * x[j]).sum();
-                assert!((ax - b[i]).abs() < 1e-10 * (1.0 + x.iter().map(|v| v.abs()).sum::<f64>()), "n {n}");
+                assert!(
+                    (ax - b[i]).abs() < 1e-10 * (1.0 + x.iter().map(|v| v.abs()).sum::<f64>()),
+                    "n {n}"
+                );
             }
         }
     }

@@ -31,7 +31,11 @@ pub fn gmres(
     let m = restart.max(1);
     x.iter_mut().for_each(|v| *v = 0.0);
     let bnorm = norm(b);
-    let mut out = GmresOutcome { iterations: 0, products: 0, relative_residual: 1.0 };
+    let mut out = GmresOutcome {
+        iterations: 0,
+        products: 0,
+        relative_residual: 1.0,
+    };
     if bnorm == 0.0 || !bnorm.is_finite() {
         out.relative_residual = if bnorm == 0.0 { 0.0 } else { f64::INFINITY };
         return out;
@@ -171,11 +175,22 @@ mod tests {
         };
         let b: Vec<f64> = (0..n).map(|i| ((i * 7) % 11) as f64 - 5.0).collect();
         let mut x = vec![0.0; n];
-        let o = gmres(&b, &mut x, 10, 500, 1e-10, &mut |v, o| apply(v, o), &mut |r, z| z.copy_from_slice(r));
+        let o = gmres(
+            &b,
+            &mut x,
+            10,
+            500,
+            1e-10,
+            &mut |v, o| apply(v, o),
+            &mut |r, z| z.copy_from_slice(r),
+        );
         let mut ax = vec![0.0; n];
         apply(&x, &mut ax);
         let true_res = norm(&ax.iter().zip(&b).map(|(a, b)| a - b).collect::<Vec<_>>()) / norm(&b);
-        assert!(o.relative_residual <= 1e-10 && true_res < 1e-9, "{o:?} {true_res}");
+        assert!(
+            o.relative_residual <= 1e-10 && true_res < 1e-9,
+            "{o:?} {true_res}"
+        );
         // exact preconditioner: Thomas algorithm
         let thomas = |r: &[f64], z: &mut [f64]| {
             let mut c = vec![0.0; n];
@@ -189,7 +204,15 @@ mod tests {
                 z[i] = d[i] - if i + 1 < n { c[i] * z[i + 1] } else { 0.0 };
             }
         };
-        let o = gmres(&b, &mut x, 10, 500, 1e-10, &mut |v, o| apply(v, o), &mut |r, z| thomas(r, z));
+        let o = gmres(
+            &b,
+            &mut x,
+            10,
+            500,
+            1e-10,
+            &mut |v, o| apply(v, o),
+            &mut |r, z| thomas(r, z),
+        );
         assert_eq!(o.iterations, 1, "{o:?}");
     }
 }

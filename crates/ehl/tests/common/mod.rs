@@ -21,7 +21,9 @@ pub struct ToeplitzLine {
 impl ToeplitzLine {
     pub fn new(grid: Grid, e_red: f64) -> Self {
         let dense = DenseDeflection::line(grid, e_red);
-        let c = (0..grid.nx).map(|d| dense.coefficient(d as isize, 0)).collect();
+        let c = (0..grid.nx)
+            .map(|d| dense.coefficient(d as isize, 0))
+            .collect();
         ToeplitzLine { grid, dense, c }
     }
 }
@@ -70,11 +72,24 @@ impl FftHalfSpace {
         let inv_y = planner.plan_fft_inverse(my);
         let mut kf = vec![Complex::new(0.0, 0.0); mx * my];
         for j in 0..my {
-            let dj = if j < grid.ny { j as isize } else if j == grid.ny { 0 } else { j as isize - my as isize };
+            let dj = if j < grid.ny {
+                j as isize
+            } else if j == grid.ny {
+                0
+            } else {
+                j as isize - my as isize
+            };
             for i in 0..mx {
-                let di = if i < grid.nx { i as isize } else if i == grid.nx { 0 } else { i as isize - mx as isize };
+                let di = if i < grid.nx {
+                    i as isize
+                } else if i == grid.nx {
+                    0
+                } else {
+                    i as isize - mx as isize
+                };
                 let zero = i == grid.nx || j == grid.ny;
-                kf[j * mx + i] = Complex::new(if zero { 0.0 } else { dense.coefficient(di, dj) }, 0.0);
+                kf[j * mx + i] =
+                    Complex::new(if zero { 0.0 } else { dense.coefficient(di, dj) }, 0.0);
             }
         }
         let mut s = FftHalfSpace {
@@ -97,7 +112,11 @@ impl FftHalfSpace {
 
     fn fft2(&mut self, a: &mut [Complex<f64>], forward: bool) {
         let (mx, my) = (2 * self.grid.nx, 2 * self.grid.ny);
-        let (fx, fy) = if forward { (&self.fwd_x, &self.fwd_y) } else { (&self.inv_x, &self.inv_y) };
+        let (fx, fy) = if forward {
+            (&self.fwd_x, &self.fwd_y)
+        } else {
+            (&self.inv_x, &self.inv_y)
+        };
         for row in a.chunks_mut(mx) {
             fx.process(row);
         }
