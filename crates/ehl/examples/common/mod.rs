@@ -105,14 +105,10 @@ pub fn out_dir(name: &str) -> PathBuf {
 
 // ------------------------------------------------------------------ a small line chart
 
-/// The program's pictures use DejaVu Sans embedded in the library (`crate::output::plot`); a
-/// study registers the same file as plotters' "sans-serif" so its charts match them.
+/// The program's pictures use DejaVu Sans embedded in the library; studies register the same
+/// font so their charts match them.
 pub fn register_font() {
-    static DEJAVU: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-    for style in [FontStyle::Normal, FontStyle::Bold] {
-        plotters::style::register_font("sans-serif", style, DEJAVU)
-            .unwrap_or_else(|_| panic!("embedded font rejected"));
-    }
+    ehl::output::plot::ensure_font().unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// One curve of a [`chart`].

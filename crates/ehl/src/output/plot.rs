@@ -37,8 +37,9 @@ static DEJAVU: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 type DrawResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
-/// Registers the embedded DejaVu Sans as plotters' "sans-serif" (once per process).
-fn ensure_font() -> std::result::Result<(), String> {
+/// Registers the embedded DejaVu Sans as plotters' "sans-serif" (once per process). Public so
+/// that study programs drawing their own charts use the same font.
+pub fn ensure_font() -> std::result::Result<(), String> {
     static DONE: OnceLock<std::result::Result<(), String>> = OnceLock::new();
     DONE.get_or_init(|| {
         for style in [FontStyle::Normal, FontStyle::Bold] {
