@@ -780,18 +780,43 @@ pub fn write_pressure(path: &Path, case: &Case, solution: &Solution) -> Result<(
         } else {
             let (pm, k) = arg_max(&solution.fields.pressure);
             let (i, j) = (k % g.nx, k / g.nx);
+            // A few singular cells (the end peak of an uncorrected roller, tens of GPa) would
+            // turn the whole contact black: when the maximum exceeds twice the 90th percentile
+            // of the loaded cells, the colours saturate at 1.5 x that percentile (an EHL spike
+            // or a Hertz peak never triggers this), and the subtitle says so.
+            let mut loaded: Vec<f64> = solution
+                .fields
+                .pressure
+                .iter()
+                .copied()
+                .filter(|&v| v > 0.0)
+                .collect();
+            loaded.sort_by(f64::total_cmp);
+            let p90 = loaded
+                .get(((loaded.len() as f64) * 0.9) as usize)
+                .copied()
+                .unwrap_or(pm);
+            let top = if pm > 2.0 * p90 { 1.5 * p90 } else { pm };
+            let mut lines = vec![
+                format!("pressure — {}", pmax_line(solution, case)),
+                convergence_line(solution, case),
+            ];
+            if top < pm {
+                lines.push(format!(
+                    "colours saturate above {} GPa (a few cells reach {} GPa)",
+                    fmt_sig(gpa(top), 3),
+                    fmt_sig(gpa(pm), 3)
+                ));
+            }
             draw_map(
                 root,
                 &MapSpec {
                     title: &case.title,
-                    lines: vec![
-                        format!("pressure — {}", pmax_line(solution, case)),
-                        convergence_line(solution, case),
-                    ],
+                    lines,
                     grid: g,
                     values: &solution.fields.pressure,
                     scale: 1e-9,
-                    range: nonempty(0.0, gpa(pm)),
+                    range: nonempty(0.0, gpa(top)),
                     cmap: ColorMap::Inferno,
                     bar_label: "pressure (GPa)".into(),
                     y_label: y_axis_label(case),
