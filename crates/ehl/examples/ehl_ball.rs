@@ -4,13 +4,12 @@
 //! (h_c = 225.8 nm, h_min = 125.5 nm, p_max = 0.388 GPa) and the Hamrock-Dowson fits.
 //!
 //! Prints a markdown table and draws `target/studies/ehl_ball/ball_profiles.png` (film along x at
-//! y = 0 and along y through the minimum film, each grid) and `ball_convergence.png`.
+//! y = 0 and along y through the minimum film, each grid).
 //!
 //! `cargo run --release -p ehl --example ehl_ball`
 mod common;
 
 use common::{case_text, charts, out_dir, repo, run, sets, Panel, Series};
-use ehl::output::plot::{write_xy, Series as XySeries};
 use ehl::reference::film::{hamrock_dowson_central, hamrock_dowson_min};
 use ehl::units;
 use plotters::chart::SeriesLabelPosition;
@@ -46,7 +45,6 @@ fn main() {
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let colors = [RGBColor(230, 130, 0), RGBColor(20, 90, 180), RGBColor(200, 40, 30)];
     let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
-    let (mut conv_c, mut conv_m) = (Vec::new(), Vec::new());
     for (k, n) in [65usize, 129, 257].into_iter().enumerate() {
         let c = case_text(&text, &sets(&[("grid.nx", n.to_string()), ("grid.ny", n.to_string())]));
         let s = run(&c);
@@ -66,8 +64,6 @@ fn main() {
             sm.iterations,
             sm.wall_time_s
         );
-        conv_c.push((n as f64, hc * 1e9));
-        conv_m.push((n as f64, hm * 1e9));
         let gr = &s.grid;
         let h = s.fields.film.as_ref().unwrap();
         let jm = gr.ny / 2; // odd n: the centre row is y = 0
@@ -99,16 +95,16 @@ fn main() {
     let flat = |v: f64, lo: f64, hi: f64| vec![(lo, v), (hi, v)];
     for (list, lo, hi) in [(&mut along_x, -0.3, 0.3), (&mut along_y, -0.3, 0.3)] {
         list.push(Series {
-            label: "EHL-FBNS h_c and h_min".into(),
+            label: "EHL-FBNS h_c (129^2)".into(),
             points: flat(FBNS.0 * 1e9, lo, hi),
             color: RGBColor(60, 60, 60),
             dashed: true,
             markers: false,
         });
         list.push(Series {
-            label: String::new(),
+            label: "EHL-FBNS h_min (129^2)".into(),
             points: flat(FBNS.1 * 1e9, lo, hi),
-            color: RGBColor(60, 60, 60),
+            color: RGBColor(150, 150, 150),
             dashed: true,
             markers: false,
         });
@@ -125,7 +121,7 @@ fn main() {
                 y_range: 0.0..500.0,
                 log_x: false,
                 series: along_x,
-                legend: SeriesLabelPosition::UpperMiddle,
+                legend: SeriesLabelPosition::LowerMiddle,
             },
             Panel {
                 title: "film along y through the minimum (the horseshoe's side lobes)",
@@ -135,26 +131,8 @@ fn main() {
                 y_range: 0.0..500.0,
                 log_x: false,
                 series: along_y,
-                legend: SeriesLabelPosition::UpperMiddle,
+                legend: SeriesLabelPosition::LowerMiddle,
             },
-        ],
-    )
-    .unwrap();
-    write_xy(
-        &dir.join("ball_convergence.png"),
-        "Ball on glass (EHL-FBNS case): film against the grid",
-        &format!(
-            "EHL-FBNS (129^2): h_c 225.8, h_min 125.5 nm;  Hamrock-Dowson: h_c {:.1}, h_min {:.1} nm",
-            hd_c * 1e9,
-            hd_m * 1e9
-        ),
-        "cells per side (domain [-3a, 3a])",
-        "film thickness (nm)",
-        &[
-            XySeries { label: "central film, ehl".into(), points: conv_c },
-            XySeries { label: "minimum film, ehl".into(), points: conv_m },
-            XySeries { label: "EHL-FBNS h_c (129^2)".into(), points: vec![(129.0, FBNS.0 * 1e9)] },
-            XySeries { label: "EHL-FBNS h_min (129^2)".into(), points: vec![(129.0, FBNS.1 * 1e9)] },
         ],
     )
     .unwrap();
