@@ -135,19 +135,10 @@ pub struct Panel<'a> {
     pub legend: SeriesLabelPosition,
 }
 
-/// A tick label without trailing zeros ("100", "0.5", "7.25").
+/// A tick label without trailing zeros ("100", "0.5", "7.25"): the library's formatter with
+/// three decimals.
 fn tick(v: f64) -> String {
-    let mut s = format!("{v:.3}");
-    while s.ends_with('0') {
-        s.pop();
-    }
-    if s.ends_with('.') {
-        s.pop();
-    }
-    if s == "-0" {
-        s = "0".into();
-    }
-    s
+    ehl::output::plot::fmt_tick(v, 0.1)
 }
 
 /// Draws `panels` side by side into one picture of `size` px.
