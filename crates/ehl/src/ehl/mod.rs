@@ -79,7 +79,7 @@ impl Default for EhlParams {
         EhlParams {
             tolerance: 1e-6,
             max_iterations: 60,
-            gmres_restart: 40,
+            gmres_restart: 80,
             max_linear_iterations: 400,
             band: 4,
             continuation: true,
