@@ -23,6 +23,7 @@ pub const FIGURES: &[&str] = &[
     "contact_area_m2",
     "central_film_m",
     "min_film_m",
+    "centerline_min_film_m",
     "friction_coefficient",
     "friction_force_n",
 ];

@@ -220,6 +220,15 @@ fn solve_ehl(
     summary.max_pressure_pa = pmax;
     summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
     summary.central_film_m = film_at(&grid, &r.film, 0.0, 0.0);
+    let jc = if grid.ny == 1 {
+        0
+    } else {
+        (((0.0 - grid.y_min) / grid.dy - 0.5).round().max(0.0) as usize).min(grid.ny - 1)
+    };
+    summary.centerline_min_film_m = (0..grid.nx)
+        .map(|i| r.film[grid.idx(i, jc)])
+        .filter(|h| h.is_finite())
+        .reduce(f64::min);
     summary.mass_inflow_kg_s = Some(r.inflow);
     summary.mass_outflow_kg_s = Some(r.outflow);
     summary.side_leakage_kg_s = Some(r.side_leakage);

@@ -47,6 +47,11 @@ pub struct Summary {
     pub min_film_m: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_film_at_m: Option<[f64; 2]>,
+    /// ehl: the minimum film along the axial centre line (the row nearest y = 0) (m). For a
+    /// straight finite roller the overall minimum sits at the free ends, where it depends on the
+    /// axial grid; this figure is the converged mid-length one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub centerline_min_film_m: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_coefficient: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
