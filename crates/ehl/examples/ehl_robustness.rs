@@ -33,8 +33,6 @@ fn main() {
         let two_u = (w / m).powi(2);
         let u = 0.5 * two_u;
         let g = l / two_u.powf(0.25);
-        let b_over_r = (8.0 * w / std::f64::consts::PI).sqrt();
-        let _ = b_over_r;
         let text = format!(
             r#"
 title = "robustness"
