@@ -204,6 +204,26 @@ fn body(top: &Sec, name: &str) -> R<Body> {
     Ok(b)
 }
 
+/// A tagged table (`{ kind = ..., params }`, `{ model = ..., params }`) may hold only its tag
+/// and the parameters of the chosen variant: anything else is an error naming the key and
+/// listing the variant's parameters.
+fn only_params(p: &Sec, t: &Table, tag: &str, what: &str, variant: &str, params: &[&str]) -> R<()> {
+    for k in t.keys() {
+        if k != tag && !params.contains(&k.as_str()) {
+            let list = if params.is_empty() {
+                "none".to_string()
+            } else {
+                params.join(", ")
+            };
+            return Err(p.err(
+                k,
+                format!("is not a parameter of {what} \"{variant}\" (its parameters: {list})"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// `bodyN.profile`: a table `{ kind = ..., params }` or the bare word "straight".
 fn profile(s: &Sec, length: f64) -> R<Profile> {
     let key = s.key("profile");
@@ -241,19 +261,7 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
                 "chamfer" => &["edge_length", "angle"],
                 _ => &[],
             };
-            for k in t.keys() {
-                if k != "kind" && !params.contains(&k.as_str()) {
-                    let list = if params.is_empty() {
-                        "none".to_string()
-                    } else {
-                        params.join(", ")
-                    };
-                    return Err(p.err(
-                        k,
-                        format!("is not a parameter of profile kind \"{kind}\" (its parameters: {list})"),
-                    ));
-                }
-            }
+            only_params(&p, t, "kind", "profile kind", kind, params)?;
             let need = |k: &str, unit: &str| -> R<f64> {
                 required(
                     p.positive(k, unit)?,
@@ -649,21 +657,7 @@ fn rheology(s: &Sec) -> R<Rheology> {
         "eyring" => &["eyring_stress", "limiting_shear_coefficient"],
         _ => &[],
     };
-    for k in t.keys() {
-        if k != "model" && !params.contains(&k.as_str()) {
-            let list = if params.is_empty() {
-                "none".to_string()
-            } else {
-                params.join(", ")
-            };
-            return Err(p.err(
-                k,
-                format!(
-                    "is not a parameter of rheology model \"{model}\" (its parameters: {list})"
-                ),
-            ));
-        }
-    }
+    only_params(&p, t, "model", "rheology model", model, params)?;
     let need = |k: &str, unit: &str| -> R<f64> {
         required(
             p.positive(k, unit)?,
