@@ -30,7 +30,12 @@ fn main() {
     );
     let r = c0.body1.radius;
     let w = units::point_load_parameter(c0.load.force, e, r);
-    let u = units::speed_parameter(lub.viscosity, c0.motion.as_ref().unwrap().entrainment_speed, e, r);
+    let u = units::speed_parameter(
+        lub.viscosity,
+        c0.motion.as_ref().unwrap().entrainment_speed,
+        e,
+        r,
+    );
     let g = units::material_parameter(lub.pressure_viscosity_coefficient, e);
     let hd_c = hamrock_dowson_central(w, u, g, 1.0) * r;
     let hd_m = hamrock_dowson_min(w, u, g, 1.0) * r;
@@ -43,13 +48,24 @@ fn main() {
     );
     println!("| cells | a / dx | h_c (nm) | / EHL-FBNS | / Hamrock-Dowson | h_min (nm) | / EHL-FBNS | / Hamrock-Dowson | p_max (GPa) | / EHL-FBNS | iterations | time (s) |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
-    let colors = [RGBColor(230, 130, 0), RGBColor(20, 90, 180), RGBColor(200, 40, 30)];
+    let colors = [
+        RGBColor(230, 130, 0),
+        RGBColor(20, 90, 180),
+        RGBColor(200, 40, 30),
+    ];
     let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
     for (k, n) in [65usize, 129, 257].into_iter().enumerate() {
-        let c = case_text(&text, &sets(&[("grid.nx", n.to_string()), ("grid.ny", n.to_string())]));
+        let c = case_text(
+            &text,
+            &sets(&[("grid.nx", n.to_string()), ("grid.ny", n.to_string())]),
+        );
         let s = run(&c);
         let sm = &s.summary;
-        let (hc, hm, pm) = (sm.central_film_m.unwrap(), sm.min_film_m.unwrap(), sm.max_pressure_pa);
+        let (hc, hm, pm) = (
+            sm.central_film_m.unwrap(),
+            sm.min_film_m.unwrap(),
+            sm.max_pressure_pa,
+        );
         println!(
             "| {n}^2 | {:.1} | {:.1} | {:.3} | {:.3} | {:.1} | {:.3} | {:.3} | {:.4} | {:.3} | {} | {:.2} |",
             sm.hertz_half_width_m / s.grid.dx,
@@ -68,17 +84,23 @@ fn main() {
         let h = s.fields.film.as_ref().unwrap();
         let jm = gr.ny / 2; // odd n: the centre row is y = 0
         let at = sm.min_film_at_m.unwrap();
-        let im = (0..gr.nx).min_by(|&a, &b| (gr.x(a) - at[0]).abs().total_cmp(&(gr.x(b) - at[0]).abs())).unwrap();
+        let im = (0..gr.nx)
+            .min_by(|&a, &b| (gr.x(a) - at[0]).abs().total_cmp(&(gr.x(b) - at[0]).abs()))
+            .unwrap();
         along_x.push(Series {
             label: format!("{n}^2 cells"),
-            points: (0..gr.nx).map(|i| (gr.x(i) * 1e3, h[gr.idx(i, jm)] * 1e9)).collect(),
+            points: (0..gr.nx)
+                .map(|i| (gr.x(i) * 1e3, h[gr.idx(i, jm)] * 1e9))
+                .collect(),
             color: colors[k],
             dashed: false,
             markers: false,
         });
         along_y.push(Series {
             label: format!("{n}^2 cells, x = {:.3} mm", gr.x(im) * 1e3),
-            points: (0..gr.ny).map(|j| (gr.y(j) * 1e3, h[gr.idx(im, j)] * 1e9)).collect(),
+            points: (0..gr.ny)
+                .map(|j| (gr.y(j) * 1e3, h[gr.idx(im, j)] * 1e9))
+                .collect(),
             color: colors[k],
             dashed: false,
             markers: false,

@@ -20,7 +20,16 @@ use ehl::units;
 
 /// Case text: steel rollers of radius 60 mm each (R = 30 mm), W, U, G given directly.
 /// `length` "inf" gives the infinite line contact.
-fn text(length: &str, w: f64, u: f64, g: f64, nx: usize, ny: usize, visc: &str, dens: &str) -> String {
+fn text(
+    length: &str,
+    w: f64,
+    u: f64,
+    g: f64,
+    nx: usize,
+    ny: usize,
+    visc: &str,
+    dens: &str,
+) -> String {
     let finite = length != "inf";
     format!(
         r#"title = "film fits"
@@ -58,7 +67,11 @@ tolerance = 1e-6
 max_iterations = 200
 {}
 "#,
-        if finite { "mirror_levels = 1\nfree_end_correction = true" } else { "" }
+        if finite {
+            "mirror_levels = 1\nfree_end_correction = true"
+        } else {
+            ""
+        }
     )
 }
 
@@ -70,7 +83,11 @@ fn mid_min(s: &Solution) -> f64 {
     let row: Vec<f64> = if g.ny == 1 {
         r(0).to_vec()
     } else if g.ny % 2 == 0 {
-        r(g.ny / 2 - 1).iter().zip(r(g.ny / 2)).map(|(a, b)| 0.5 * (a + b)).collect()
+        r(g.ny / 2 - 1)
+            .iter()
+            .zip(r(g.ny / 2))
+            .map(|(a, b)| 0.5 * (a + b))
+            .collect()
     } else {
         r(g.ny / 2).to_vec()
     };
@@ -100,7 +117,10 @@ fn main() {
         units::material_parameter(15.9e-9, e),
     );
     let t36 = (1.36e-4, 1.3e-10, 1470.0);
-    for (name, (w, u, g)) in [("thesis ch. 2 rollers (6 kN, 2.7 m/s)", ch2), ("thesis Table 3.6 smooth case", t36)] {
+    for (name, (w, u, g)) in [
+        ("thesis ch. 2 rollers (6 kN, 2.7 m/s)", ch2),
+        ("thesis Table 3.6 smooth case", t36),
+    ] {
         let (m, l) = moes_line_groups(w, u, g);
         let wl = w * e * r;
         println!(
@@ -113,19 +133,32 @@ fn main() {
         println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
         // Barus + incompressible runs on a coarser grid: on finer grids the solver does not
         // converge for these cases (see the grid study at the end).
-        for (contact, len, ny, nx_r, nx_b) in [("finite rollers L = 9.5 mm", "9.5e-3", 128, 512, 256), ("infinite line", "inf", 1, 2048, 256)] {
-            for (laws, visc, dens, nx) in [("Roelands + D-H", "roelands", "dowson-higginson", nx_r), ("Barus + incompressible", "barus", "constant", nx_b)] {
+        for (contact, len, ny, nx_r, nx_b) in [
+            ("finite rollers L = 9.5 mm", "9.5e-3", 128, 512, 256),
+            ("infinite line", "inf", 1, 2048, 256),
+        ] {
+            for (laws, visc, dens, nx) in [
+                ("Roelands + D-H", "roelands", "dowson-higginson", nx_r),
+                ("Barus + incompressible", "barus", "constant", nx_b),
+            ] {
                 let c = case_text(&text(len, w, u, g, nx, ny, visc, dens), &[]);
                 let s = ehl::run::solve(&c, &ehl::run::Silent).unwrap();
                 if !s.summary.converged {
                     // never report an unconverged film: say so in the table
-                    println!("| {contact} | {laws} | {nx} x {ny} | not converged: {} |", s.summary.termination.chars().take(100).collect::<String>());
+                    println!(
+                        "| {contact} | {laws} | {nx} x {ny} | not converged: {} |",
+                        s.summary.termination.chars().take(100).collect::<String>()
+                    );
                     continue;
                 }
                 let hc = s.summary.central_film_m.unwrap();
                 let hm = mid_min(&s);
                 let roelands = visc == "roelands";
-                let fit_c = if roelands { pan_hamrock_central(w, u, g) } else { moes_line_central_film(w, u, g) } * r;
+                let fit_c = if roelands {
+                    pan_hamrock_central(w, u, g)
+                } else {
+                    moes_line_central_film(w, u, g)
+                } * r;
                 let fit_name = if roelands { "P-H" } else { "Moes" };
                 let (pm, sp, sx) = if roelands {
                     let ph_m = pan_hamrock_min(w, u, g) * r;
@@ -134,8 +167,14 @@ fn main() {
                         .unwrap_or(("none".into(), "-".into()));
                     (
                         format!("{:.1} | {:.3}", ph_m * 1e9, hm / ph_m),
-                        format!("{sp} / {:.3}", pan_hamrock_spike_pressure(w, u, g) * e / 1e9),
-                        format!("{sx} / {:.0}", pan_hamrock_spike_position(w, u, g) * r * 1e6),
+                        format!(
+                            "{sp} / {:.3}",
+                            pan_hamrock_spike_pressure(w, u, g) * e / 1e9
+                        ),
+                        format!(
+                            "{sx} / {:.0}",
+                            pan_hamrock_spike_position(w, u, g) * r * 1e6
+                        ),
                     )
                 } else {
                     ("- | -".into(), "-".into(), "-".into())
@@ -154,7 +193,10 @@ fn main() {
     }
 
     // grid convergence of the infinite line contact (thesis ch. 2 groups), both sets of laws
-    for (laws, visc, dens) in [("Roelands + D-H", "roelands", "dowson-higginson"), ("Barus + incompressible", "barus", "constant")] {
+    for (laws, visc, dens) in [
+        ("Roelands + D-H", "roelands", "dowson-higginson"),
+        ("Barus + incompressible", "barus", "constant"),
+    ] {
         println!("\n### infinite line contact, thesis ch. 2 groups, {laws}: grid convergence\n");
         println!("| nx | cells across 2b | converged | h_c (nm) | change | h_min (nm) | change | p_max (GPa) | iterations | time (s) |");
         println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
@@ -165,12 +207,20 @@ fn main() {
             let s = ehl::run::solve(&c, &ehl::run::Silent).unwrap();
             let sm = &s.summary;
             if !sm.converged {
-                println!("| {nx} | {:.0} | no: {} | - | - | - | - | - | {} | {:.2} |",
-                    2.0 * sm.hertz_half_width_m / s.grid.dx, sm.termination.chars().take(90).collect::<String>(), sm.iterations, sm.wall_time_s);
+                println!(
+                    "| {nx} | {:.0} | no: {} | - | - | - | - | - | {} | {:.2} |",
+                    2.0 * sm.hertz_half_width_m / s.grid.dx,
+                    sm.termination.chars().take(90).collect::<String>(),
+                    sm.iterations,
+                    sm.wall_time_s
+                );
                 continue;
             }
             let (hc, hm) = (sm.central_film_m.unwrap(), sm.min_film_m.unwrap());
-            let ch = |a: f64, b: Option<f64>| b.map(|b| format!("{:+.2} %", 100.0 * (a / b - 1.0))).unwrap_or("-".into());
+            let ch = |a: f64, b: Option<f64>| {
+                b.map(|b| format!("{:+.2} %", 100.0 * (a / b - 1.0)))
+                    .unwrap_or("-".into())
+            };
             println!(
                 "| {nx} | {:.0} | yes | {:.1} | {} | {:.1} | {} | {:.4} | {} | {:.2} |",
                 2.0 * sm.hertz_half_width_m / s.grid.dx,

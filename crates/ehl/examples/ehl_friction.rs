@@ -18,7 +18,11 @@ fn main() {
     let dir = out_dir("ehl_friction");
     let text = std::fs::read_to_string(repo().join("examples/ehl_friction_line.toml")).unwrap();
     let models = [
-        ("Newtonian, no limit", r#"{ model = "newtonian" }"#, RGBColor(60, 60, 60)),
+        (
+            "Newtonian, no limit",
+            r#"{ model = "newtonian" }"#,
+            RGBColor(60, 60, 60),
+        ),
         (
             "Newtonian + tau_L = 0.06 p",
             r#"{ model = "carreau", shear_modulus = 4.5e6, power_law_index = 1.0, limiting_shear_coefficient = 0.06 }"#,
@@ -43,7 +47,10 @@ fn main() {
         for srr in srrs {
             let c = case_text(
                 &text,
-                &sets(&[("lubricant.rheology", rheo.to_string()), ("motion.slide_to_roll", format!("{srr}"))]),
+                &sets(&[
+                    ("lubricant.rheology", rheo.to_string()),
+                    ("motion.slide_to_roll", format!("{srr}")),
+                ]),
             );
             let s = run(&c);
             let f = s.summary.friction_coefficient.unwrap();
@@ -57,8 +64,20 @@ fn main() {
                 pts_high.push((srr, f));
             }
         }
-        near.push(Series { label: label.into(), points: pts_low, color, dashed: false, markers: true });
-        far.push(Series { label: label.into(), points: pts_high, color, dashed: false, markers: true });
+        near.push(Series {
+            label: label.into(),
+            points: pts_low,
+            color,
+            dashed: false,
+            markers: true,
+        });
+        far.push(Series {
+            label: label.into(),
+            points: pts_high,
+            color,
+            dashed: false,
+            markers: true,
+        });
     }
     println!("| SRR | Newtonian | Newtonian + limit | Carreau + limit |");
     println!("| --- | --- | --- | --- |");
@@ -67,7 +86,14 @@ fn main() {
     }
     println!("\nSRR > 0.1:");
     for s in &far {
-        println!("{}: {:?}", s.label, s.points.iter().map(|(a, b)| format!("{a}: {b:.4}")).collect::<Vec<_>>());
+        println!(
+            "{}: {:?}",
+            s.label,
+            s.points
+                .iter()
+                .map(|(a, b)| format!("{a}: {b:.4}"))
+                .collect::<Vec<_>>()
+        );
     }
     far.push(Series {
         label: "Lambda = 0.06".into(),

@@ -73,7 +73,10 @@ max_iterations = 100
         let case = match parse_str(&text, "robustness.toml", &[]) {
             Ok(c) => c,
             Err(err) => {
-                println!("| {:.1} | {m} | {l} | case refused: {err} | | | | |", ph * 1e-9);
+                println!(
+                    "| {:.1} | {m} | {l} | case refused: {err} | | | | |",
+                    ph * 1e-9
+                );
                 continue;
             }
         };

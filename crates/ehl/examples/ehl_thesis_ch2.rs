@@ -60,7 +60,13 @@ fn pts(x: &[f64], y: &[f64], scale: f64) -> Vec<(f64, f64)> {
 }
 
 fn line(label: String, points: Vec<(f64, f64)>, color: RGBColor) -> Series {
-    Series { label, points, color, dashed: false, markers: false }
+    Series {
+        label,
+        points,
+        color,
+        dashed: false,
+        markers: false,
+    }
 }
 
 /// Mean-speed groups (W, U, G) and R of a roller case at mid-length.
@@ -151,8 +157,10 @@ fn sweep_charts(rows: &[Row], name: &str, what: &str, dir: &std::path::Path) {
         let col = COLORS[k % COLORS.len()];
         let p = mid(s, &s.fields.pressure);
         let h = mid(s, s.fields.film.as_ref().unwrap());
-        let v: Vec<f64> =
-            mid(s, s.fields.viscosity.as_ref().unwrap()).iter().map(|e| e.log10()).collect();
+        let v: Vec<f64> = mid(s, s.fields.viscosity.as_ref().unwrap())
+            .iter()
+            .map(|e| e.log10())
+            .collect();
         let d = mid(s, s.fields.density.as_ref().unwrap());
         pp.push(line(r.label.clone(), pts(&x, &p, 1e-9), col));
         hh.push(line(r.label.clone(), pts(&x, &h, 1e6), col));
@@ -305,7 +313,9 @@ fn main() {
     .unwrap();
 
     // axial profiles: at x = 0 and at the x of the mid-length minimum film (the outlet)
-    let i0 = (0..g.nx).min_by(|&a, &b| g.x(a).abs().total_cmp(&g.x(b).abs())).unwrap();
+    let i0 = (0..g.nx)
+        .min_by(|&a, &b| g.x(a).abs().total_cmp(&g.x(b).abs()))
+        .unwrap();
     let io = (0..g.nx).min_by(|&a, &b| h[a].total_cmp(&h[b])).unwrap();
     let y: Vec<f64> = g.ys().iter().map(|v| v * 1e3).collect();
     let lab0 = format!("x = {:.3} mm (centre)", g.x(i0) * 1e3);
@@ -322,8 +332,16 @@ fn main() {
                 y_range: 0.0..1.0,
                 log_x: false,
                 series: vec![
-                    line(lab0.clone(), pts(&y, &col(s, &s.fields.pressure, i0), 1e-9), COLORS[3]),
-                    line(labo.clone(), pts(&y, &col(s, &s.fields.pressure, io), 1e-9), COLORS[2]),
+                    line(
+                        lab0.clone(),
+                        pts(&y, &col(s, &s.fields.pressure, i0), 1e-9),
+                        COLORS[3],
+                    ),
+                    line(
+                        labo.clone(),
+                        pts(&y, &col(s, &s.fields.pressure, io), 1e-9),
+                        COLORS[2],
+                    ),
                 ],
                 legend: SeriesLabelPosition::LowerMiddle,
             },
@@ -347,7 +365,13 @@ fn main() {
     // ---------------------------------------------------------------- load sweep, u_e = 2.7 m/s
     let loads: Vec<Row> = [4000.0, 5000.0, 6000.0, 7000.0]
         .iter()
-        .map(|&f| solve_set(&text, &[("load.force", format!("{f}"))], format!("F = {:.0} kN", f / 1e3)))
+        .map(|&f| {
+            solve_set(
+                &text,
+                &[("load.force", format!("{f}"))],
+                format!("F = {:.0} kN", f / 1e3),
+            )
+        })
         .collect();
     println!("\nload sweep, u_e = 2.7 m/s\n");
     table(&loads);
@@ -359,7 +383,10 @@ fn main() {
         .map(|&u| {
             solve_set(
                 &text,
-                &[("load.force", "5000".into()), ("motion.entrainment_speed", format!("{u}"))],
+                &[
+                    ("load.force", "5000".into()),
+                    ("motion.entrainment_speed", format!("{u}")),
+                ],
                 format!("u_e = {u:.0} m/s"),
             )
         })
@@ -369,11 +396,22 @@ fn main() {
     sweep_charts(&speeds, "speed", "F = 5 kN", &dir);
 
     // film against speed: log-log slope (classical exponent about 0.7)
-    let lx: Vec<f64> = speeds.iter().map(|r| r.c.motion.as_ref().unwrap().entrainment_speed).collect();
-    let hc: Vec<f64> = speeds.iter().map(|r| r.s.summary.central_film_m.unwrap()).collect();
+    let lx: Vec<f64> = speeds
+        .iter()
+        .map(|r| r.c.motion.as_ref().unwrap().entrainment_speed)
+        .collect();
+    let hc: Vec<f64> = speeds
+        .iter()
+        .map(|r| r.s.summary.central_film_m.unwrap())
+        .collect();
     let hm: Vec<f64> = speeds
         .iter()
-        .map(|r| mid(&r.s, r.s.fields.film.as_ref().unwrap()).iter().cloned().fold(f64::INFINITY, f64::min))
+        .map(|r| {
+            mid(&r.s, r.s.fields.film.as_ref().unwrap())
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min)
+        })
         .collect();
     println!(
         "\nfilm ~ u_e^n: central n = {:.3}, mid-length minimum n = {:.3} (Pan-Hamrock: 0.692, 0.694)",
@@ -381,10 +419,18 @@ fn main() {
         common::log_slope(&lx, &hm)
     );
     let lf: Vec<f64> = loads.iter().map(|r| r.c.load.force).collect();
-    let hcf: Vec<f64> = loads.iter().map(|r| r.s.summary.central_film_m.unwrap()).collect();
+    let hcf: Vec<f64> = loads
+        .iter()
+        .map(|r| r.s.summary.central_film_m.unwrap())
+        .collect();
     let hmf: Vec<f64> = loads
         .iter()
-        .map(|r| mid(&r.s, r.s.fields.film.as_ref().unwrap()).iter().cloned().fold(f64::INFINITY, f64::min))
+        .map(|r| {
+            mid(&r.s, r.s.fields.film.as_ref().unwrap())
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min)
+        })
         .collect();
     println!(
         "film ~ F^n: central n = {:.3}, mid-length minimum n = {:.3} (Pan-Hamrock: -0.166, -0.128)",
@@ -398,8 +444,14 @@ fn main() {
         "entrainment speed u_e (m/s)",
         "film thickness (um)",
         &[
-            XySeries { label: "central film".into(), points: pts(&lx, &hc, 1e6) },
-            XySeries { label: "minimum film, mid-length line".into(), points: pts(&lx, &hm, 1e6) },
+            XySeries {
+                label: "central film".into(),
+                points: pts(&lx, &hc, 1e6),
+            },
+            XySeries {
+                label: "minimum film, mid-length line".into(),
+                points: pts(&lx, &hm, 1e6),
+            },
         ],
     )
     .unwrap();
@@ -409,11 +461,21 @@ fn main() {
     println!("| ny | dy (um) | h_min overall (um) | at y (mm) | end-row p_max (GPa) | mid-length h_min (um) | iterations | time (s) |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     for ny in [128usize, 256, 512] {
-        let r = solve_set(&text, &[("grid.nx", "128".into()), ("grid.ny", ny.to_string())], String::new());
+        let r = solve_set(
+            &text,
+            &[("grid.nx", "128".into()), ("grid.ny", ny.to_string())],
+            String::new(),
+        );
         let s = &r.s;
         let g = &s.grid;
-        let end_p = s.fields.pressure[..g.nx].iter().cloned().fold(0.0, f64::max);
-        let hmid = mid(s, s.fields.film.as_ref().unwrap()).iter().cloned().fold(f64::INFINITY, f64::min);
+        let end_p = s.fields.pressure[..g.nx]
+            .iter()
+            .cloned()
+            .fold(0.0, f64::max);
+        let hmid = mid(s, s.fields.film.as_ref().unwrap())
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min);
         println!(
             "| {} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {} | {:.1} |",
             ny,

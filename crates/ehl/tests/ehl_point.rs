@@ -139,8 +139,12 @@ fn ball_against_hamrock_dowson() {
 
 /// Centreline index of the cell nearest to (0, 0) and its row.
 fn centre(grid: &Grid) -> usize {
-    let i = (0..grid.nx).min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs())).unwrap();
-    let j = (0..grid.ny).min_by(|&a, &b| grid.y(a).abs().total_cmp(&grid.y(b).abs())).unwrap();
+    let i = (0..grid.nx)
+        .min_by(|&a, &b| grid.x(a).abs().total_cmp(&grid.x(b).abs()))
+        .unwrap();
+    let j = (0..grid.ny)
+        .min_by(|&a, &b| grid.y(a).abs().total_cmp(&grid.y(b).abs()))
+        .unwrap();
     grid.idx(i, j)
 }
 
@@ -158,10 +162,19 @@ fn ball_against_mourier_simulation() {
     let kc = centre(&grid);
     let hc = res.film[kc];
     let row = kc / grid.nx;
-    let hcl = (0..grid.nx).map(|i| res.film[grid.idx(i, row)]).fold(f64::INFINITY, f64::min);
-    println!("h_c {:.1} nm (Mourier 210.5), centreline h_min {:.1} nm (Mourier 175.5)", hc * 1e9, hcl * 1e9);
+    let hcl = (0..grid.nx)
+        .map(|i| res.film[grid.idx(i, row)])
+        .fold(f64::INFINITY, f64::min);
+    println!(
+        "h_c {:.1} nm (Mourier 210.5), centreline h_min {:.1} nm (Mourier 175.5)",
+        hc * 1e9,
+        hcl * 1e9
+    );
     assert!((hc / 210.5e-9 - 1.0).abs() < 0.04, "h_c {hc}");
-    assert!((hcl / 175.5e-9 - 1.0).abs() < 0.04, "centreline h_min {hcl}");
+    assert!(
+        (hcl / 175.5e-9 - 1.0).abs() < 0.04,
+        "centreline h_min {hcl}"
+    );
 }
 
 /// Central film of a circular contact by the fit of Nijenbanning, Venner & Moes, Wear 176 (1994)
@@ -215,6 +228,12 @@ fn ball_barus_incompressible_against_nijenbanning() {
     let (m, l) = (w * (2.0 * u).powf(-0.75), g * (2.0 * u).powf(0.25));
     let href = nijenbanning_circular(m, l) * (2.0 * u).sqrt() * r;
     let hc = res.film[centre(&grid)];
-    println!("M {m:.2} L {l:.3}: h_c {:.1} nm vs Nijenbanning {:.1} nm (Newton {}, GMRES {})", hc * 1e9, href * 1e9, res.iterations, res.linear_iterations);
+    println!(
+        "M {m:.2} L {l:.3}: h_c {:.1} nm vs Nijenbanning {:.1} nm (Newton {}, GMRES {})",
+        hc * 1e9,
+        href * 1e9,
+        res.iterations,
+        res.linear_iterations
+    );
     assert!((hc / href - 1.0).abs() < 0.04);
 }
