@@ -367,18 +367,14 @@ fn film_guess(p: &EhlProblem, alpha: f64, point: bool) -> f64 {
 
 /// The starting state: the given or a Hertz pressure scaled to the load, H0 from the classical
 /// film at the pressure maximum.
-fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
+fn start(problem: &EhlProblem, sys: &mut System, init: Option<&[f64]>, alpha: f64) -> State {
     let grid = sys.grid;
     let b = problem.hertz_half_width;
     let n = grid.len();
     let point = is_point(problem);
     let mut st = State::new(n);
-    match problem.initial_pressure {
-        Some(p0)
-            if grid == problem.grid
-                && p0.len() == n
-                && p0.iter().any(|v| v.is_finite() && *v > 0.0) =>
-        {
+    match init {
+        Some(p0) if p0.len() == n && p0.iter().any(|v| v.is_finite() && *v > 0.0) => {
             for k in 0..n {
                 st.p[k] = if sys.active[k] && p0[k].is_finite() {
                     (p0[k] / problem.hertz_pressure).max(0.0)
@@ -433,7 +429,13 @@ fn start(problem: &EhlProblem, sys: &mut System, alpha: f64) -> State {
 /// state seen is returned with `converged == false` and the reason in `termination`.
 pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
     let mut stats = Stats::default();
-    let (mut sys, st, end) = solve_grid(problem, problem.grid, params, &mut stats);
+    let (mut sys, st, end) = solve_grid(
+        problem,
+        problem.grid,
+        problem.initial_pressure,
+        params,
+        &mut stats,
+    );
     finish(problem, &mut sys, st, end, &stats)
 }
 
@@ -477,12 +479,33 @@ fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
     }
 }
 
-/// Solve on `grid`: grid sequencing (the solution on the grid twice as coarse, interpolated, as
-/// the start) when the grid is fine and no initial pressure is given; otherwise, or if that
-/// fails, from the Hertz/dry start with continuation in alpha.
+/// Average of each 2 x 2 (2 x 1 for a line) block of cells of `fg` onto `cg` = `coarser(fg)`.
+fn restrict(fg: &Grid, v: &[f64], cg: &Grid) -> Vec<f64> {
+    let sy = if fg.ny == 1 { 1 } else { 2 };
+    let w = 1.0 / (2 * sy) as f64;
+    let mut out = vec![0.0; cg.len()];
+    for j in 0..cg.ny {
+        for i in 0..cg.nx {
+            let mut s = 0.0;
+            for jj in 0..sy {
+                for ii in 0..2 {
+                    s += v[fg.idx(2 * i + ii, sy * j + jj)];
+                }
+            }
+            out[cg.idx(i, j)] = s * w;
+        }
+    }
+    out
+}
+
+/// Solve on `grid` from the pressure `init` on it (None: a Hertz profile). Grid sequencing when
+/// the grid is fine enough: solve on the grid twice as coarse (from `init` averaged onto it),
+/// interpolate, and finish with Newton here; if that fails, or the grid is coarse, Newton from
+/// `init` directly, with continuation in alpha.
 fn solve_grid(
     problem: &EhlProblem,
     grid: Grid,
+    init: Option<&[f64]>,
     params: &EhlParams,
     stats: &mut Stats,
 ) -> (System, State, StageEnd) {
@@ -496,47 +519,48 @@ fn solve_grid(
         ph,
         lambda,
     };
-    if problem.initial_pressure.is_none() {
-        if let Some(cg) = coarser(grid) {
-            let (csys, cst, cend) = solve_grid(problem, cg, params, stats);
-            stats.applies += csys.applies;
-            if cend.converged {
-                let op = (problem.operator)(grid);
-                let mut sys = System::new(
-                    grid,
-                    op,
-                    problem.gap,
-                    b,
-                    r,
-                    phys.clone(),
-                    problem.load,
-                    params.band.max(1),
-                );
-                let mut st = State::new(grid.len());
-                interpolate(&cg, &cst.p, &grid, &mut st.p);
-                st.h0 = cst.h0;
-                // keep the load exact on the new grid
-                let carried = sys.carried(&st.p);
-                if carried > 0.0 {
-                    let s = sys.load / carried;
-                    st.p.iter_mut().for_each(|p| *p *= s);
-                }
-                sys.eval(&mut st);
-                stats.stages += 1;
-                let end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
-                if end.converged {
-                    return (sys, st, end);
-                }
+    let init = init.filter(|p| p.len() == grid.len());
+    if let Some(cg) = coarser(grid) {
+        let cinit = init.map(|p| restrict(&grid, p, &cg));
+        let (csys, cst, cend) = solve_grid(problem, cg, cinit.as_deref(), params, stats);
+        stats.applies += csys.applies;
+        if cend.converged {
+            let op = (problem.operator)(grid);
+            let mut sys = System::new(
+                grid,
+                op,
+                problem.gap,
+                b,
+                r,
+                phys.clone(),
+                problem.load,
+                params.band.max(1),
+            );
+            let mut st = State::new(grid.len());
+            interpolate(&cg, &cst.p, &grid, &mut st.p);
+            st.h0 = cst.h0;
+            // keep the load exact on the new grid
+            let carried = sys.carried(&st.p);
+            if carried > 0.0 {
+                let s = sys.load / carried;
+                st.p.iter_mut().for_each(|p| *p *= s);
+            }
+            sys.eval(&mut st);
+            stats.stages += 1;
+            let end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
+            if end.converged {
+                return (sys, st, end);
             }
         }
     }
-    solve_direct(problem, grid, phys, params, stats)
+    solve_direct(problem, grid, init, phys, params, stats)
 }
 
 /// Solve on `grid` from the Hertz/dry start, with continuation in alpha if Newton fails.
 fn solve_direct(
     problem: &EhlProblem,
     grid: Grid,
+    init: Option<&[f64]>,
     phys: Physics,
     params: &EhlParams,
     stats: &mut Stats,
@@ -556,7 +580,7 @@ fn solve_direct(
         params.band.max(1),
     );
 
-    let mut st = start(problem, &mut sys, alpha);
+    let mut st = start(problem, &mut sys, init, alpha);
     let initial = st.clone();
     stats.stages += 1;
     let mut end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
@@ -573,7 +597,7 @@ fn solve_direct(
             let last = f >= 1.0;
             sys.phys.lubricant.pressure_viscosity_coefficient = alpha * f;
             let mut cur = if fresh {
-                start(problem, &mut sys, alpha * f)
+                start(problem, &mut sys, init, alpha * f)
             } else {
                 let mut s = from.clone();
                 sys.eval(&mut s);
