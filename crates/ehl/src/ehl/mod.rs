@@ -205,6 +205,10 @@ fn newton(
                     .max(if full_step { 2.0 } else { 0.0 });
             }
             prev_merit = Some(merit);
+            // no need to solve far below what the tolerance asks: near the end a reduction of
+            // the residual by tol / score (with a safety factor 10) is enough (Kelley 1995,
+            // Iterative Methods for Linear and Nonlinear Equations, sec. 6.3)
+            eta = eta.max((0.1 * tol / score).min(1e-2));
             // exact H0 column
             sys.directional(st, &e_h0, &mut lin, &mut bcol);
             for k in 0..n {
@@ -439,15 +443,16 @@ pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
     finish(problem, &mut sys, st, end, &stats)
 }
 
-/// The grid with half the cells along x (and along y unless ny == 1), same extents, if the
-/// grid is fine enough for grid sequencing.
+/// The grid with half the cells (rounded up) along x, and along y unless ny == 1, same extents,
+/// if the grid is fine enough for grid sequencing: at least 256 cells on a line, 128 x 64 on
+/// a 2D grid (coarser grids do not resolve the contact well enough to be a useful start).
 fn coarser(g: Grid) -> Option<Grid> {
-    let ok_x = g.nx >= 256 && g.nx % 2 == 0;
-    let ok_y = g.ny == 1 || (g.ny % 2 == 0 && g.ny >= 64);
-    (ok_x && ok_y).then(|| {
+    let min_nx = if g.ny == 1 { 256 } else { 128 };
+    let ok = g.nx >= min_nx && (g.ny == 1 || g.ny >= 64);
+    ok.then(|| {
         Grid::new(
-            g.nx / 2,
-            if g.ny == 1 { 1 } else { g.ny / 2 },
+            g.nx.div_ceil(2),
+            if g.ny == 1 { 1 } else { g.ny.div_ceil(2) },
             g.x_min,
             g.x_max(),
             g.y_min,
@@ -456,7 +461,8 @@ fn coarser(g: Grid) -> Option<Grid> {
     })
 }
 
-/// Bilinear interpolation of a cell-centred field from `cg` to `fg` (same extents).
+/// Bilinear interpolation of a cell-centred field from `cg` to `fg` (same extents; either may
+/// be the finer), constant beyond the outermost cell centres.
 fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
     let pos = |x: f64, x0: f64, d: f64, n: usize| -> (usize, usize, f64) {
         let s = ((x - x0) / d - 0.5).clamp(0.0, (n - 1) as f64);
@@ -479,11 +485,16 @@ fn interpolate(cg: &Grid, v: &[f64], fg: &Grid, out: &mut [f64]) {
     }
 }
 
-/// Average of each 2 x 2 (2 x 1 for a line) block of cells of `fg` onto `cg` = `coarser(fg)`.
+/// A fine-grid field on the coarse grid `cg` (same extents): the average of each 2 x 2
+/// (2 x 1 for a line) block of cells when the grids nest exactly, else bilinear sampling.
 fn restrict(fg: &Grid, v: &[f64], cg: &Grid) -> Vec<f64> {
-    let sy = if fg.ny == 1 { 1 } else { 2 };
-    let w = 1.0 / (2 * sy) as f64;
     let mut out = vec![0.0; cg.len()];
+    let sy = if fg.ny == 1 { 1 } else { 2 };
+    if fg.nx != 2 * cg.nx || fg.ny != sy * cg.ny {
+        interpolate(fg, v, cg, &mut out);
+        return out;
+    }
+    let w = 1.0 / (2 * sy) as f64;
     for j in 0..cg.ny {
         for i in 0..cg.nx {
             let mut s = 0.0;

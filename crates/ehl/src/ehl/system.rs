@@ -22,6 +22,7 @@
 //! load row.
 
 use crate::case::{DensityModel, Lubricant};
+use crate::elastic::operator::min_len;
 use crate::elastic::Deflection;
 use crate::grid::Grid;
 use crate::lubricant::{density, viscosity};
@@ -445,99 +446,103 @@ impl Preconditioner {
             .map(|_| Banded::new(nx, kl.min(nx - 1), ku.min(nx - 1)))
             .collect();
         let (active, khat, phys) = (&sys.active[..], &sys.khat[..], &sys.phys);
-        let ok = lines.par_iter_mut().enumerate().all(|(j, m)| {
-            let f = st.fields(active);
-            for i in 0..nx {
-                let k = j * nx + i;
-                if set[k] {
-                    m.add(i, i, 1.0);
-                    continue;
-                }
-                m.add(i, i, shift);
-                let ck = c[k];
-                let nb = residual::neighbours(&rg, i, j);
-                for (d, &n) in nb.iter().enumerate() {
-                    if d >= 2 && ny == 1 {
-                        break;
+        let ok = lines
+            .par_iter_mut()
+            .with_min_len(min_len(nx))
+            .enumerate()
+            .all(|(j, m)| {
+                let f = st.fields(active);
+                for i in 0..nx {
+                    let k = j * nx + i;
+                    if set[k] {
+                        m.add(i, i, 1.0);
+                        continue;
                     }
-                    let (cf, _) = residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 });
-                    m.add(i, i, ck * cf);
-                    if d < 2 {
-                        if let Some(n) = n {
-                            if active[n] {
-                                let il = if d == 0 { i - 1 } else { i + 1 };
-                                m.add(i, il, -ck * cf);
+                    m.add(i, i, shift);
+                    let ck = c[k];
+                    let nb = residual::neighbours(&rg, i, j);
+                    for (d, &n) in nb.iter().enumerate() {
+                        if d >= 2 && ny == 1 {
+                            break;
+                        }
+                        let (cf, _) = residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 });
+                        m.add(i, i, ck * cf);
+                        if d < 2 {
+                            if let Some(n) = n {
+                                if active[n] {
+                                    let il = if d == 0 { i - 1 } else { i + 1 };
+                                    m.add(i, il, -ck * cf);
+                                }
                             }
                         }
                     }
-                }
-                // Poiseuille through eps: eps_m = rho H^3 / (eta lambda), so
-                // d eps_m / dP_l = eps_m [(rho'/rho - eta'/eta) delta_ml + 3 Khat(m - l) / H_m]
-                let mut geps = [0.0; 3]; // coefficient of d eps_{k-1}, d eps_k, d eps_{k+1}
-                for (d, &n) in nb.iter().enumerate() {
-                    if d >= 2 && ny == 1 {
-                        break;
+                    // Poiseuille through eps: eps_m = rho H^3 / (eta lambda), so
+                    // d eps_m / dP_l = eps_m [(rho'/rho - eta'/eta) delta_ml + 3 Khat(m - l) / H_m]
+                    let mut geps = [0.0; 3]; // coefficient of d eps_{k-1}, d eps_k, d eps_{k+1}
+                    for (d, &n) in nb.iter().enumerate() {
+                        if d >= 2 && ny == 1 {
+                            break;
+                        }
+                        let d2 = if d < 2 { dx2 } else { dy2 };
+                        match n {
+                            Some(n) if active[n] => {
+                                let g = -0.5 / d2 * (st.p[n] - st.p[k]);
+                                geps[1] += g;
+                                if d < 2 {
+                                    geps[if d == 0 { 0 } else { 2 }] += g;
+                                }
+                            }
+                            _ => geps[1] += 2.0 * st.p[k] / d2,
+                        }
                     }
-                    let d2 = if d < 2 { dx2 } else { dy2 };
-                    match n {
-                        Some(n) if active[n] => {
-                            let g = -0.5 / d2 * (st.p[n] - st.p[k]);
-                            geps[1] += g;
-                            if d < 2 {
-                                geps[if d == 0 { 0 } else { 2 }] += g;
+                    for (s, &g) in geps.iter().enumerate() {
+                        if g == 0.0 || (s == 0 && i == 0) || (s == 2 && i + 1 >= nx) {
+                            continue;
+                        }
+                        let im = i + s - 1;
+                        let km = j * nx + im;
+                        let e = st.eps[km];
+                        if e == 0.0 || !active[km] {
+                            continue;
+                        }
+                        let pm = st.p[km];
+                        m.add(
+                            i,
+                            im,
+                            ck * g * e * (phys.drho(pm) / st.rho[km] - phys.dlneta(pm)),
+                        );
+                        let hm = st.h[km];
+                        if hm > 0.0 {
+                            let lo = im.saturating_sub(band);
+                            let hi = (im + band).min(nx - 1);
+                            for l in lo..=hi {
+                                if active[j * nx + l] {
+                                    m.add(i, l, ck * g * e * 3.0 * khat[im.abs_diff(l)] / hm);
+                                }
                             }
                         }
-                        _ => geps[1] += 2.0 * st.p[k] / d2,
                     }
-                }
-                for (s, &g) in geps.iter().enumerate() {
-                    if g == 0.0 || (s == 0 && i == 0) || (s == 2 && i + 1 >= nx) {
-                        continue;
-                    }
-                    let im = i + s - 1;
-                    let km = j * nx + im;
-                    let e = st.eps[km];
-                    if e == 0.0 || !active[km] {
-                        continue;
-                    }
-                    let pm = st.p[km];
-                    m.add(
-                        i,
-                        im,
-                        ck * g * e * (phys.drho(pm) / st.rho[km] - phys.dlneta(pm)),
-                    );
-                    let hm = st.h[km];
-                    if hm > 0.0 {
+                    let a = residual::couette_stencil(&rg, active, i, j);
+                    for (o, &ao) in a.iter().enumerate() {
+                        if ao == 0.0 || i < o {
+                            continue;
+                        }
+                        let (im, km) = (i - o, k - o);
+                        if !active[km] {
+                            continue;
+                        }
+                        m.add(i, im, ck * ao * phys.drho(st.p[km]) * st.h[km]);
                         let lo = im.saturating_sub(band);
                         let hi = (im + band).min(nx - 1);
                         for l in lo..=hi {
                             if active[j * nx + l] {
-                                m.add(i, l, ck * g * e * 3.0 * khat[im.abs_diff(l)] / hm);
+                                m.add(i, l, ck * ao * st.rho[km] * khat[im.abs_diff(l)]);
                             }
                         }
                     }
                 }
-                let a = residual::couette_stencil(&rg, active, i, j);
-                for (o, &ao) in a.iter().enumerate() {
-                    if ao == 0.0 || i < o {
-                        continue;
-                    }
-                    let (im, km) = (i - o, k - o);
-                    if !active[km] {
-                        continue;
-                    }
-                    m.add(i, im, ck * ao * phys.drho(st.p[km]) * st.h[km]);
-                    let lo = im.saturating_sub(band);
-                    let hi = (im + band).min(nx - 1);
-                    for l in lo..=hi {
-                        if active[j * nx + l] {
-                            m.add(i, l, ck * ao * st.rho[km] * khat[im.abs_diff(l)]);
-                        }
-                    }
-                }
-            }
-            m.factor()
-        });
+                m.factor()
+            });
         if !ok {
             return None;
         }
@@ -562,6 +567,7 @@ impl Preconditioner {
     fn solve_lines(&self, v: &mut [f64]) {
         v.par_chunks_mut(self.nx)
             .zip(&self.lines)
+            .with_min_len(min_len(self.nx))
             .for_each(|(seg, m)| m.solve(seg));
     }
 

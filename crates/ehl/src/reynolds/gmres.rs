@@ -1,9 +1,13 @@
-//! Restarted GMRES with right preconditioning (Saad & Schultz 1986; Saad, *Iterative Methods
-//! for Sparse Linear Systems*, 2nd ed., alg. 9.5), for the Newton steps of the EHL solver.
+//! Restarted flexible GMRES with right preconditioning (Saad, *Iterative Methods for Sparse
+//! Linear Systems*, 2nd ed., alg. 9.6 (FGMRES); Saad 1993), for the Newton steps of the EHL
+//! solver.
 //!
 //! Solves A x = b from x = 0 with A and M^-1 given as closures; minimises ||b - A x||_2 over
-//! x in M^-1 K_m(A M^-1, r), restarting every `restart` iterations. Right preconditioning keeps
-//! the true residual norm (the one the Newton line search sees) as the stopping measure.
+//! x in span{z_1 .. z_m}, z_j = M^-1 v_j, restarting every `restart` iterations. The z_j are
+//! stored, so M^-1 may change from one application to the next (an inner iterative solve, as in
+//! the coarse-grid correction of the EHL preconditioner); with a fixed M^-1 this is plain
+//! right-preconditioned GMRES. Right preconditioning keeps the true residual norm (the one the
+//! Newton line search sees) as the stopping measure.
 
 /// What a GMRES solve achieved.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,9 +45,9 @@ pub fn gmres(
         return out;
     }
     let mut v: Vec<Vec<f64>> = vec![vec![0.0; n]; m + 1];
+    let mut zs: Vec<Vec<f64>> = vec![vec![0.0; n]; m];
     let mut h = vec![vec![0.0; m]; m + 1]; // h[i][j]
     let (mut cs, mut sn, mut g) = (vec![0.0; m], vec![0.0; m], vec![0.0; m + 1]);
-    let mut z = vec![0.0; n];
     let mut w = vec![0.0; n];
     let mut r = b.to_vec();
     let mut first = true;
@@ -68,8 +72,8 @@ pub fn gmres(
         g[0] = beta;
         let mut k = 0;
         while k < m && out.iterations < max_iter {
-            precond(&v[k], &mut z);
-            matvec(&z, &mut w);
+            precond(&v[k], &mut zs[k]);
+            matvec(&zs[k], &mut w);
             out.products += 1;
             out.iterations += 1;
             // modified Gram-Schmidt
@@ -113,7 +117,7 @@ pub fn gmres(
         if k == 0 {
             return out;
         }
-        // y = H^-1 g (upper triangular k x k), x += M^-1 (V y)
+        // y = H^-1 g (upper triangular k x k), x += Z y
         let mut y = vec![0.0; k];
         for i in (0..k).rev() {
             let mut s = g[i];
@@ -122,15 +126,10 @@ pub fn gmres(
             }
             y[i] = s / h[i][i];
         }
-        w.iter_mut().for_each(|e| *e = 0.0);
         for (j, yj) in y.iter().enumerate() {
-            for (wl, vl) in w.iter_mut().zip(&v[j]) {
-                *wl += yj * vl;
+            for (xl, zl) in x.iter_mut().zip(&zs[j]) {
+                *xl += yj * zl;
             }
-        }
-        precond(&w, &mut z);
-        for (xl, zl) in x.iter_mut().zip(&z) {
-            *xl += zl;
         }
         out.relative_residual = g[k].abs() / bnorm;
         if out.relative_residual <= rtol || out.iterations >= max_iter {
