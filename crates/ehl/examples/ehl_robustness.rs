@@ -1,23 +1,30 @@
-//! Convergence envelope of the steady EHL solver on the infinite line contact: for Hertz
-//! pressures 0.5-2.5 GPa and Moes M = 10-1000, L = 3-20 (issue 3), run the case through the same
-//! pipeline as `ehl run` and print whether it converged, the Newton iterations, the time and the
-//! central film against Moes' fit. The laws are Barus + incompressible, the ones the Moes fit was
-//! made with, so the ratio is a like-for-like check where the solver converges.
+//! Convergence envelope of the steady EHL solver: for Hertz pressures 0.3-2.5 GPa and Moes
+//! M = 10-1000, L = 3-20 (issue 3), run the case through the same pipeline as `ehl run` (dry
+//! solution first, then EHL from it) and print whether it converged, the Newton iterations, the
+//! time and the central film against the fit made with the same laws (Barus + incompressible):
 //!
-//! `cargo run --release -p ehl --example ehl_robustness`
+//! * `line` (default): infinite line contact, 1024 cells, against Moes' line fit;
+//! * `roller`: two straight rollers R = 10 mm, length 10 mm, 1 mirror level + psi, 256 x 128
+//!   cells, mid-length central film against Moes' line fit at the mean load per length;
+//! * `ball`: ball R = 10 mm on a flat, 128 x 128 cells, against the Nijenbanning-Venner-Moes
+//!   circular-contact fit (Moes' point groups).
+//!
+//! `cargo run --release -p ehl --example ehl_robustness [line|roller|ball]`
 
 use ehl::case::parse_str;
-use ehl::reference::film::moes_line_central_film;
+use ehl::reference::film::{moes_line_central_film, nijenbanning_circular_central};
 use ehl::run::{solve, Silent};
 use std::time::Instant;
 
 fn main() {
+    let kind = std::env::args().nth(1).unwrap_or_else(|| "line".into());
     let (e, nu, r, eta0) = (200e9_f64, 0.3_f64, 0.01_f64, 0.04_f64);
     let e_red = 2.0 / (2.0 * (1.0 - nu * nu) / e);
-    println!("| p_h (GPa) | M | L | converged | Newton | time (s) | h_c (um) | h_c / Moes |");
+    println!("{kind}:\n");
+    println!("| p_h (GPa) | M | L | converged | Newton | time (s) | h_c (um) | h_c / fit |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut cases = Vec::new();
-    for &ph in &[0.5e9, 1.0e9, 2.5e9] {
+    for &ph in &[0.3e9, 1.0e9, 2.5e9] {
         for &m in &[10.0, 30.0, 100.0, 300.0, 1000.0] {
             cases.push((ph, m, 10.0));
         }
@@ -27,12 +34,22 @@ fn main() {
             cases.push((1.0e9, m, l));
         }
     }
+    if kind == "ball" {
+        return balls(&cases, e, nu, r, eta0, e_red);
+    }
+    let roller = kind == "roller";
     for (ph, m, l) in cases {
         // W from p_h; 2U from M = W (2U)^-1/2; G from L = G (2U)^1/4 (Venner & Lubrecht groups)
         let w = 2.0 * std::f64::consts::PI * ph * ph / (e_red * e_red);
         let two_u = (w / m).powi(2);
         let u = 0.5 * two_u;
         let g = l / two_u.powf(0.25);
+        let (length, grid) = if roller {
+            ("10e-3", "nx = 256\nny = 128\nx_min = -4.5\nx_max = 1.5")
+        } else {
+            ("inf", "nx = 1024\nny = 1\nx_min = -6.0\nx_max = 1.5")
+        };
+        // a finite roller carries p_h at mid-length with w = F / length
         let text = format!(
             r#"
 title = "robustness"
@@ -40,17 +57,17 @@ kind = "ehl"
 [body1]
 shape = "roller"
 radius = {r2}
-length = inf
+length = {length}
 youngs_modulus = {e}
 poisson_ratio = {nu}
 [body2]
 shape = "roller"
 radius = {r2}
-length = inf
+length = {length}
 youngs_modulus = {e}
 poisson_ratio = {nu}
 [load]
-max_hertz_pressure = {ph}
+{load}
 [motion]
 dimensionless_speed = {u}
 [lubricant]
@@ -60,15 +77,19 @@ density = 850.0
 viscosity_model = "barus"
 density_model = "constant"
 [grid]
-nx = 1024
-ny = 1
-x_min = -6.0
-x_max = 1.5
+{grid}
 [solver]
 tolerance = 1e-6
 max_iterations = 100
+mirror_levels = 1
+free_end_correction = true
 "#,
-            r2 = 2.0 * r
+            r2 = 2.0 * r,
+            load = if roller {
+                format!("force = {}", w * e_red * r * 10e-3)
+            } else {
+                format!("max_hertz_pressure = {ph}")
+            },
         );
         let case = match parse_str(&text, "robustness.toml", &[]) {
             Ok(c) => c,
@@ -93,6 +114,77 @@ max_iterations = 100
             s.iterations,
             hc * 1e6,
             hc / moes
+        );
+    }
+}
+
+/// The ball-on-flat envelope: p_h sets the load, M and L the speed and G (Moes point groups).
+fn balls(cases: &[(f64, f64, f64)], e: f64, nu: f64, r: f64, eta0: f64, e_red: f64) {
+    for &(ph, m, l) in cases {
+        let f = ehl::units::point_load_for_pressure(ph, r, e_red);
+        let w = f / (e_red * r * r);
+        // M = W (2U)^-3/4, L = G (2U)^1/4
+        let two_u = (w / m).powf(4.0 / 3.0);
+        let u = 0.5 * two_u;
+        let g = l / two_u.powf(0.25);
+        let text = format!(
+            r#"
+title = "robustness, ball"
+kind = "ehl"
+[body1]
+shape = "ball"
+radius = {r}
+youngs_modulus = {e}
+poisson_ratio = {nu}
+[body2]
+shape = "flat"
+youngs_modulus = {e}
+poisson_ratio = {nu}
+[load]
+force = {f}
+[motion]
+dimensionless_speed = {u}
+[lubricant]
+viscosity = {eta0}
+dimensionless_material = {g}
+density = 850.0
+viscosity_model = "barus"
+density_model = "constant"
+[grid]
+nx = 128
+ny = 128
+x_min = -4.5
+x_max = 1.5
+y_min = -3.0
+y_max = 3.0
+[solver]
+tolerance = 1e-6
+max_iterations = 100
+"#
+        );
+        let case = match parse_str(&text, "robustness.toml", &[]) {
+            Ok(c) => c,
+            Err(err) => {
+                println!(
+                    "| {:.1} | {m} | {l} | case refused: {err} | | | | |",
+                    ph * 1e-9
+                );
+                continue;
+            }
+        };
+        let t = Instant::now();
+        let sol = solve(&case, &Silent).expect("solve");
+        let secs = t.elapsed().as_secs_f64();
+        let s = &sol.summary;
+        let hc = s.central_film_m.unwrap_or(f64::NAN);
+        let fit = nijenbanning_circular_central(m, l) * two_u.sqrt() * r;
+        println!(
+            "| {:.1} | {m} | {l} | {} | {} | {secs:.2} | {:.4} | {:.3} |",
+            ph * 1e-9,
+            if s.converged { "yes" } else { "**no**" },
+            s.iterations,
+            hc * 1e6,
+            hc / fit
         );
     }
 }

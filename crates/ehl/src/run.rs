@@ -194,43 +194,24 @@ fn solve_ehl(
         max_iterations: case.solver.max_iterations,
         ..EhlParams::default()
     };
-    let solve_from = |start: Option<&[f64]>| {
-        crate::ehl::solve_steady(
-            &EhlProblem {
-                grid,
-                gap,
-                operator: factory,
-                load,
-                lubricant,
-                entrainment_speed: motion.entrainment_speed,
-                reduced_radius: case.reduced_radius(),
-                reduced_modulus: case.reduced_modulus(),
-                hertz_half_width: hertz.b,
-                hertz_pressure: hertz.ph,
-                initial_pressure: start,
-            },
-            &params,
-        )
-    };
-    // Two starts: the converged dry pressure, or none (the solver then works up from coarser
-    // grids from a Hertz profile). Measured: grid sequencing is the robust route for the
-    // infinite line (the thesis ch. 2 line at 1024 cells fails from the dry start after 100 s,
-    // converges in 0.4 s sequenced), the dry start for finite rollers (the 512 x 128 thesis
-    // roller fails from the Hertz profile). The second start is tried only if the first fails.
     let dry_start = dry.converged.then_some(dry.pressure.as_slice());
-    let order = if grid.ny == 1 {
-        [None, dry_start]
-    } else {
-        [dry_start, None]
-    };
-    let mut r = solve_from(order[0]);
-    if !r.converged {
-        progress.report(0.5, "EHL, second start");
-        let second = solve_from(order[1]);
-        if second.converged || second.residual < r.residual {
-            r = second;
-        }
-    }
+    let r = crate::ehl::solve_steady_with_fallback(
+        &EhlProblem {
+            grid,
+            gap,
+            operator: factory,
+            load,
+            lubricant,
+            entrainment_speed: motion.entrainment_speed,
+            reduced_radius: case.reduced_radius(),
+            reduced_modulus: case.reduced_modulus(),
+            hertz_half_width: hertz.b,
+            hertz_pressure: hertz.ph,
+            initial_pressure: dry_start,
+        },
+        &params,
+        &|| progress.report(0.5, "EHL, second start"),
+    );
     let area = grid.cell_area();
     summary.converged = r.converged;
     summary.termination = r.termination.clone();

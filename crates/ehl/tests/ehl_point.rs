@@ -177,23 +177,6 @@ fn ball_against_mourier_simulation() {
     );
 }
 
-/// Central film of a circular contact by the fit of Nijenbanning, Venner & Moes, Wear 176 (1994)
-/// 217-229 (also Venner & Lubrecht 2000), to numerical solutions with Barus viscosity and an
-/// incompressible lubricant, in Moes' groups M = W (2U)^(-3/4), L = G (2U)^(1/4),
-/// H_c = (h_c/R) (2U)^(-1/2); ellipticity 1.
-fn nijenbanning_circular(m: f64, l: f64) -> f64 {
-    let h_ri = 145.0 * (1.0f64 + 0.796).powf(-15.0 / 7.0) / (m * m);
-    let k = 1.0f64 + 0.63;
-    let h_ei = 3.18 * k.powf(-14.0 / 25.0) * m.powf(-2.0 / 15.0);
-    let h_rp = 1.29 * (1.0f64 + 0.691).powf(-2.0 / 3.0) * l.powf(2.0 / 3.0);
-    let h_ep = 1.48 * k.powf(-7.0 / 20.0) * m.powf(-1.0 / 12.0) * l.powf(0.75);
-    let h_00: f64 = 1.8;
-    let s = 1.5 * (1.0 + (-1.2 * h_ei / h_ri).exp());
-    let a = (h_ri.powf(1.5) + (h_ei.powi(-4) + h_00.powi(-4)).powf(-3.0 / 8.0)).powf(2.0 * s / 3.0);
-    let b = (h_rp.powi(-8) + h_ep.powi(-8)).powf(-s / 8.0);
-    (a + b).powf(1.0 / s)
-}
-
 /// The 2D scaling check the film of the ball rests on (deflection and gap in H = h R / a^2,
 /// load dX dY sum P = 2 pi / 3, inlet, y-Poiseuille): with the laws of the fit (Barus,
 /// incompressible) the central film of the FBNS ball (M = 63.8, L = 5.79) is within 4 % of
@@ -226,7 +209,7 @@ fn ball_barus_incompressible_against_nijenbanning() {
     assert!(res.converged, "{}", res.termination);
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
     let (m, l) = (w * (2.0 * u).powf(-0.75), g * (2.0 * u).powf(0.25));
-    let href = nijenbanning_circular(m, l) * (2.0 * u).sqrt() * r;
+    let href = ehl::reference::film::nijenbanning_circular_central(m, l) * (2.0 * u).sqrt() * r;
     let hc = res.film[centre(&grid)];
     println!(
         "M {m:.2} L {l:.3}: h_c {:.1} nm vs Nijenbanning {:.1} nm (Newton {}, GMRES {})",

@@ -39,6 +39,23 @@ pub fn moes_point_groups(w: f64, u: f64, g: f64) -> (f64, f64) {
     crate::units::moes_point(w, u, g)
 }
 
+/// Central film of a circular contact by the fit of Nijenbanning, Venner & Moes, Wear 176 (1994)
+/// 217-229 (also Venner & Lubrecht 2000), to numerical solutions with Barus viscosity and an
+/// incompressible lubricant, in Moes' groups M = W (2U)^(-3/4), L = G (2U)^(1/4); returns
+/// H_c = (h_c/R) (2U)^(-1/2) for ellipticity 1.
+pub fn nijenbanning_circular_central(m: f64, l: f64) -> f64 {
+    let h_ri = 145.0 * (1.0f64 + 0.796).powf(-15.0 / 7.0) / (m * m);
+    let k = 1.0f64 + 0.63;
+    let h_ei = 3.18 * k.powf(-14.0 / 25.0) * m.powf(-2.0 / 15.0);
+    let h_rp = 1.29 * (1.0f64 + 0.691).powf(-2.0 / 3.0) * l.powf(2.0 / 3.0);
+    let h_ep = 1.48 * k.powf(-7.0 / 20.0) * m.powf(-1.0 / 12.0) * l.powf(0.75);
+    let h_00: f64 = 1.8;
+    let s = 1.5 * (1.0 + (-1.2 * h_ei / h_ri).exp());
+    let a = (h_ri.powf(1.5) + (h_ei.powi(-4) + h_00.powi(-4)).powf(-3.0 / 8.0)).powf(2.0 * s / 3.0);
+    let b = (h_rp.powi(-8) + h_ep.powi(-8)).powf(-s / 8.0);
+    (a + b).powf(1.0 / s)
+}
+
 /// The four asymptotes of the Moes line-contact central film (dimensionless H), Venner &
 /// Lubrecht (2000) ch. 4: rigid-isoviscous H_RI = 3 M^-1, elastic-isoviscous
 /// H_EI = 2.621 M^-1/5, rigid-piezoviscous H_RP = 1.287 L^2/3, elastic-piezoviscous
