@@ -3,7 +3,7 @@
 //! * infinite line contact (M = 100, L = 10, Roelands + Dowson-Higginson) on 256, 512, 1024 cells
 //!   over [-4.5 b, 1.5 b] (growth with N);
 //! * ball on glass (the EHL-FBNS case: R = 12.5 mm, E' = 110 GPa, F = 15 N, u_e = 0.09 m/s,
-//!   eta0 = 0.25 Pa s, alpha = 22 GPa^-1) on 129^2 cells over [-3a, 3a]^2.
+//!   eta0 = 0.25 Pa s, alpha = 22 GPa^-1) on 65^2, 129^2 and 257^2 cells over [-3a, 3a]^2.
 //!
 //! Run: `cargo bench -p ehl --bench ehl`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -75,7 +75,7 @@ fn ball(c: &mut Criterion) {
     let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::half_space(g, e)) };
     let mut group = c.benchmark_group("ehl_ball_on_glass");
     group.sample_size(10);
-    for &n in &[129usize] {
+    for &n in &[65usize, 129, 257] {
         let grid = Grid::new(n, n, -3.0 * a, 3.0 * a, -3.0 * a, 3.0 * a);
         let prob = EhlProblem {
             grid,

@@ -9,14 +9,16 @@
 //!
 //! * unknowns P (every cell with material) and H0; equations Phi = min(P, c F) = 0 (semismooth
 //!   Newton / primal-dual active set for cavitation) and the load balance (see [`system`]);
-//! * each Newton step solves J d = -R by restarted GMRES to a relative tolerance of 1e-2 .. 1e-4
-//!   (Eisenstat-Walker forcing), J v by a finite-difference directional derivative (one elastic
-//!   operator application per product), right-preconditioned by banded line solves along x
-//!   that carry the Poiseuille term and the local part of the elastic wedge coupling, with H0
-//!   by a Schur complement;
-//! * a backtracking line search on ||R||_2 (P clamped at >= 0), and if Newton fails, continuation
-//!   in the pressure-viscosity coefficient (alpha scaled by 1/4, 1/2, ... up to 1, each stage
-//!   started from the previous solution).
+//! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
+//!   1e-2 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs), J v by the
+//!   exact directional derivative (one elastic operator application per product),
+//!   right-preconditioned by banded line solves along x that carry the Poiseuille term and the
+//!   elastic wedge coupling within a band (see `line_band`), with H0 by a Schur complement;
+//! * grid sequencing: every solve starts on grids 2, 4, ... times coarser (from the given start
+//!   averaged onto them), each level's solution interpolated as the next level's start;
+//! * a backtracking line search on ||R||_2 (P clamped at >= 0), pseudo-transient continuation if
+//!   plain Newton fails, and then continuation in the pressure-viscosity coefficient (alpha
+//!   scaled by 1/4, 1/2, ... up to 1, each stage started from the previous solution).
 //!
 //! Results are returned in SI.
 
