@@ -91,30 +91,8 @@ free_end_correction = true
                 format!("max_hertz_pressure = {ph}")
             },
         );
-        let case = match parse_str(&text, "robustness.toml", &[]) {
-            Ok(c) => c,
-            Err(err) => {
-                println!(
-                    "| {:.1} | {m} | {l} | case refused: {err} | | | | |",
-                    ph * 1e-9
-                );
-                continue;
-            }
-        };
-        let t = Instant::now();
-        let sol = solve(&case, &Silent).expect("solve");
-        let secs = t.elapsed().as_secs_f64();
-        let s = &sol.summary;
-        let hc = s.central_film_m.unwrap_or(f64::NAN);
         let moes = moes_line_central_film(w, u, g) * r;
-        println!(
-            "| {:.1} | {m} | {l} | {} | {} | {secs:.2} | {:.4} | {:.3} |",
-            ph * 1e-9,
-            if s.converged { "yes" } else { "**no**" },
-            s.iterations,
-            hc * 1e6,
-            hc / moes
-        );
+        row(&text, ph, m, l, moes);
     }
 }
 
@@ -162,29 +140,35 @@ tolerance = 1e-6
 max_iterations = 100
 "#
         );
-        let case = match parse_str(&text, "robustness.toml", &[]) {
-            Ok(c) => c,
-            Err(err) => {
-                println!(
-                    "| {:.1} | {m} | {l} | case refused: {err} | | | | |",
-                    ph * 1e-9
-                );
-                continue;
-            }
-        };
-        let t = Instant::now();
-        let sol = solve(&case, &Silent).expect("solve");
-        let secs = t.elapsed().as_secs_f64();
-        let s = &sol.summary;
-        let hc = s.central_film_m.unwrap_or(f64::NAN);
         let fit = nijenbanning_circular_central(m, l) * two_u.sqrt() * r;
-        println!(
-            "| {:.1} | {m} | {l} | {} | {} | {secs:.2} | {:.4} | {:.3} |",
-            ph * 1e-9,
-            if s.converged { "yes" } else { "**no**" },
-            s.iterations,
-            hc * 1e6,
-            hc / fit
-        );
+        row(&text, ph, m, l, fit);
     }
+}
+
+/// Solve one case and print its table row: converged, Newton steps, time, central film and its
+/// ratio to `fit` (m).
+fn row(text: &str, ph: f64, m: f64, l: f64, fit: f64) {
+    let case = match parse_str(text, "robustness.toml", &[]) {
+        Ok(c) => c,
+        Err(err) => {
+            println!(
+                "| {:.1} | {m} | {l} | case refused: {err} | | | | |",
+                ph * 1e-9
+            );
+            return;
+        }
+    };
+    let t = Instant::now();
+    let sol = solve(&case, &Silent).expect("solve");
+    let secs = t.elapsed().as_secs_f64();
+    let s = &sol.summary;
+    let hc = s.central_film_m.unwrap_or(f64::NAN);
+    println!(
+        "| {:.1} | {m} | {l} | {} | {} | {secs:.2} | {:.4} | {:.3} |",
+        ph * 1e-9,
+        if s.converged { "yes" } else { "**no**" },
+        s.iterations,
+        hc * 1e6,
+        hc / fit
+    );
 }
