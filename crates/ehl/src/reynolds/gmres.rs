@@ -7,7 +7,9 @@
 //! stored, so M^-1 may change from one application to the next (an inner iterative solve, as in
 //! the coarse-grid correction of the EHL preconditioner); with a fixed M^-1 this is plain
 //! right-preconditioned GMRES. Right preconditioning keeps the true residual norm (the one the
-//! Newton line search sees) as the stopping measure.
+//! Newton line search sees) as the stopping measure. From the second cycle on, the last three
+//! slots of a cycle hold the corrections of the previous cycles (LGMRES, Baker, Jessup &
+//! Manteuffel 2005), which the flexible form allows at no extra storage.
 
 /// What a GMRES solve achieved.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +53,12 @@ pub fn gmres(
     let mut w = vec![0.0; n];
     let mut r = b.to_vec();
     let mut first = true;
+    // LGMRES augmentation (Baker, Jessup & Manteuffel, SIAM J. Matrix Anal. Appl. 26 (2005)
+    // 962-984): the corrections of the last cycles, normalised, fill the last slots of the
+    // next cycle's search space, so a restart does not throw away the slow directions
+    let mut aug: Vec<Vec<f64>> = Vec::new();
+    let n_aug = if m > 8 { 3 } else { 0 };
+    let mut dx = vec![0.0; n];
     loop {
         if !first {
             matvec(x, &mut w);
@@ -72,7 +80,12 @@ pub fn gmres(
         g[0] = beta;
         let mut k = 0;
         while k < m && out.iterations < max_iter {
-            precond(&v[k], &mut zs[k]);
+            let slot = m - aug.len();
+            if k >= slot {
+                zs[k].copy_from_slice(&aug[k - slot]);
+            } else {
+                precond(&v[k], &mut zs[k]);
+            }
             matvec(&zs[k], &mut w);
             out.products += 1;
             out.iterations += 1;
@@ -126,10 +139,26 @@ pub fn gmres(
             }
             y[i] = s / h[i][i];
         }
+        dx.iter_mut().for_each(|e| *e = 0.0);
         for (j, yj) in y.iter().enumerate() {
-            for (xl, zl) in x.iter_mut().zip(&zs[j]) {
-                *xl += yj * zl;
+            for (dl, zl) in dx.iter_mut().zip(&zs[j]) {
+                *dl += yj * zl;
             }
+        }
+        for (xl, dl) in x.iter_mut().zip(&dx) {
+            *xl += dl;
+        }
+        let dn = norm(&dx);
+        if n_aug > 0 && dn > 0.0 && dn.is_finite() {
+            let mut a = if aug.len() == n_aug {
+                aug.pop().unwrap_or_default()
+            } else {
+                vec![0.0; n]
+            };
+            for (al, dl) in a.iter_mut().zip(&dx) {
+                *al = dl / dn;
+            }
+            aug.insert(0, a);
         }
         out.relative_residual = g[k].abs() / bnorm;
         if out.relative_residual <= rtol || out.iterations >= max_iter {
