@@ -50,47 +50,17 @@ fn main() {
             ("inf", "nx = 1024\nny = 1\nx_min = -6.0\nx_max = 1.5")
         };
         // a finite roller carries p_h at mid-length with w = F / length
-        let text = format!(
-            r#"
-title = "robustness"
-kind = "ehl"
-[body1]
-shape = "roller"
-radius = {r2}
-length = {length}
-youngs_modulus = {e}
-poisson_ratio = {nu}
-[body2]
-shape = "roller"
-radius = {r2}
-length = {length}
-youngs_modulus = {e}
-poisson_ratio = {nu}
-[load]
-{load}
-[motion]
-dimensionless_speed = {u}
-[lubricant]
-viscosity = {eta0}
-dimensionless_material = {g}
-density = 850.0
-viscosity_model = "barus"
-density_model = "constant"
-[grid]
-{grid}
-[solver]
-tolerance = 1e-6
-max_iterations = 100
-mirror_levels = 1
-free_end_correction = true
-"#,
-            r2 = 2.0 * r,
-            load = if roller {
-                format!("force = {}", w * e_red * r * 10e-3)
-            } else {
-                format!("max_hertz_pressure = {ph}")
-            },
+        let body = format!(
+            "shape = \"roller\"\nradius = {}\nlength = {length}\nyoungs_modulus = {e}\npoisson_ratio = {nu}",
+            2.0 * r
         );
+        let load = if roller {
+            format!("force = {}", w * e_red * r * 10e-3)
+        } else {
+            format!("max_hertz_pressure = {ph}")
+        };
+        let solver = "mirror_levels = 1\nfree_end_correction = true";
+        let text = case_text(&body, &body, &load, u, g, eta0, grid, solver);
         let moes = moes_line_central_film(w, u, g) * r;
         row(&text, ph, m, l, moes);
     }
@@ -105,41 +75,11 @@ fn balls(cases: &[(f64, f64, f64)], e: f64, nu: f64, r: f64, eta0: f64, e_red: f
         let two_u = (w / m).powf(4.0 / 3.0);
         let u = 0.5 * two_u;
         let g = l / two_u.powf(0.25);
-        let text = format!(
-            r#"
-title = "robustness, ball"
-kind = "ehl"
-[body1]
-shape = "ball"
-radius = {r}
-youngs_modulus = {e}
-poisson_ratio = {nu}
-[body2]
-shape = "flat"
-youngs_modulus = {e}
-poisson_ratio = {nu}
-[load]
-force = {f}
-[motion]
-dimensionless_speed = {u}
-[lubricant]
-viscosity = {eta0}
-dimensionless_material = {g}
-density = 850.0
-viscosity_model = "barus"
-density_model = "constant"
-[grid]
-nx = 128
-ny = 128
-x_min = -4.5
-x_max = 1.5
-y_min = -3.0
-y_max = 3.0
-[solver]
-tolerance = 1e-6
-max_iterations = 100
-"#
-        );
+        let ball =
+            format!("shape = \"ball\"\nradius = {r}\nyoungs_modulus = {e}\npoisson_ratio = {nu}");
+        let flat = format!("shape = \"flat\"\nyoungs_modulus = {e}\npoisson_ratio = {nu}");
+        let grid = "nx = 128\nny = 128\nx_min = -4.5\nx_max = 1.5\ny_min = -3.0\ny_max = 3.0";
+        let text = case_text(&ball, &flat, &format!("force = {f}"), u, g, eta0, grid, "");
         let fit = nijenbanning_circular_central(m, l) * two_u.sqrt() * r;
         row(&text, ph, m, l, fit);
     }
@@ -171,4 +111,45 @@ fn row(text: &str, ph: f64, m: f64, l: f64, fit: f64) {
         hc * 1e6,
         hc / fit
     );
+}
+
+/// The case file of one study point: the two bodies' tables, the [load] line, dimensionless
+/// speed U and material G, Barus + incompressible laws, the [grid] lines and extra [solver] lines.
+#[allow(clippy::too_many_arguments)]
+fn case_text(
+    body1: &str,
+    body2: &str,
+    load: &str,
+    u: f64,
+    g: f64,
+    eta0: f64,
+    grid: &str,
+    solver: &str,
+) -> String {
+    format!(
+        r#"
+title = "robustness"
+kind = "ehl"
+[body1]
+{body1}
+[body2]
+{body2}
+[load]
+{load}
+[motion]
+dimensionless_speed = {u}
+[lubricant]
+viscosity = {eta0}
+dimensionless_material = {g}
+density = 850.0
+viscosity_model = "barus"
+density_model = "constant"
+[grid]
+{grid}
+[solver]
+tolerance = 1e-6
+max_iterations = 100
+{solver}
+"#
+    )
 }

@@ -164,22 +164,13 @@ impl Convolver {
             .with_min_len(min_len(px))
             .enumerate()
             .for_each(|(r, row)| {
-                let dj = if r < ny {
-                    r as isize
-                } else if r + ny > py {
-                    r as isize - py as isize
-                } else {
+                let Some(dj) = wrapped_offset(r, ny, py) else {
                     return;
                 };
                 for (c, v) in row.iter_mut().enumerate() {
-                    let di = if c < nx {
-                        c as isize
-                    } else if c + nx > px {
-                        c as isize - px as isize
-                    } else {
-                        continue;
-                    };
-                    *v = k(di, dj) * scale;
+                    if let Some(di) = wrapped_offset(c, nx, px) {
+                        *v = k(di, dj) * scale;
+                    }
                 }
             });
         let mut rows = vec![Complex::default(); py * hx];
@@ -279,6 +270,18 @@ impl Convolver {
             .zip(self.real.par_chunks(px))
             .with_min_len(min_len(px))
             .for_each(|(o, r)| o.copy_from_slice(&r[..nx]));
+    }
+}
+
+/// The offset stored at index `i` of a circular (padded) kernel of length `p` for a grid of `n`
+/// cells: i for i < n, i - p for the last n - 1 entries, None in the zero padding between.
+fn wrapped_offset(i: usize, n: usize, p: usize) -> Option<isize> {
+    if i < n {
+        Some(i as isize)
+    } else if i + n > p {
+        Some(i as isize - p as isize)
+    } else {
+        None
     }
 }
 
