@@ -192,6 +192,7 @@ fn solve_ehl(
     let params = EhlParams {
         tolerance: case.solver.tolerance,
         max_iterations: case.solver.max_iterations,
+        wedge_upwind_order: case.solver.wedge_upwind_order,
         ..EhlParams::default()
     };
     let dry_start = dry.converged.then_some(dry.pressure.as_slice());

@@ -28,6 +28,7 @@
 //! | `solver.max_iterations` | 500 for dry (constrained conjugate gradient: O(100) iterations on fine grids, more for misaligned cases), 200 for ehl |
 //! | `solver.mirror_levels` | 1 |
 //! | `solver.free_end_correction` | true |
+//! | `solver.wedge_upwind_order` | 2 (second-order upwind wedge term; 1: first order, as EHL-FBNS) |
 //!
 //! `[motion]` and `[lubricant]` are required for `kind = "ehl"` and ignored for `kind = "dry"`
 //! (they are still checked for unknown keys; the resolved case holds `None`).

@@ -172,6 +172,8 @@ pub struct SolverSpec {
     pub max_iterations: usize,
     pub mirror_levels: usize,
     pub free_end_correction: bool,
+    /// order of the upwind rule of the wedge term d(rho h)/dx (ehl): 2 or 1
+    pub wedge_upwind_order: u8,
 }
 
 /// A validated case.

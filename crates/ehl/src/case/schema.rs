@@ -88,6 +88,7 @@ const OTHER_KEYS: &[&str] = &[
     "solver.max_iterations",
     "solver.mirror_levels",
     "solver.free_end_correction",
+    "solver.wedge_upwind_order",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

@@ -99,6 +99,7 @@ fn dry_roller_defaults() {
     assert_eq!(c.solver.max_iterations, DEFAULT_DRY_ITERATIONS);
     assert_eq!(c.solver.mirror_levels, 1);
     assert!(c.solver.free_end_correction);
+    assert_eq!(c.solver.wedge_upwind_order, 2);
     // w' = F/L, R = 5 mm, b = sqrt(8 w' R / (pi E')); y extents = the roller, +-L/2 in b
     let w = 30000.0 / 4e-3;
     let b = (8.0 * w * 0.005 / (PI * E_STEEL)).sqrt();
@@ -313,6 +314,13 @@ fn overrides_apply_before_validation() {
     assert_eq!(c.body1.profile, Profile::Crowned { crown_radius: 0.5 });
     assert!(!c.solver.free_end_correction);
     assert_eq!(c.grid.nx, 64);
+    let c = parse(ROLLERS, &["solver.wedge_upwind_order=1"]).unwrap();
+    assert_eq!(c.solver.wedge_upwind_order, 1);
+    for bad in ["0", "3"] {
+        let (k, m) = err(ROLLERS, &[&format!("solver.wedge_upwind_order={bad}")]);
+        assert_eq!(k, "solver.wedge_upwind_order");
+        assert!(m.contains("1 or 2"), "{m}");
+    }
     let (k, m) = err(ROLLERS, &["load.forse=5000"]);
     assert_eq!(k, "load.forse");
     assert!(m.contains("did you mean `load.force`"), "{m}");

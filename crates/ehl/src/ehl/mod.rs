@@ -72,6 +72,10 @@ pub struct EhlParams {
     pub band: usize,
     /// fall back to continuation in alpha when Newton fails from the start
     pub continuation: bool,
+    /// order of the upwind rule for the wedge (Couette) term d(rho h)/dx: 2 (default, the
+    /// classical (3 q_i - 4 q_i-1 + q_i-2) / (2 dX)) or 1 (q_i - q_i-1) / dX, first order, as
+    /// EHL-FBNS and many older codes use; see `reynolds::residual`
+    pub wedge_upwind_order: u8,
     /// initial pseudo-time step (scaled rows: 1 is comparable to the Jacobian diagonal;
     /// f64::INFINITY for plain Newton)
     pub pseudo_time_step: f64,
@@ -87,6 +91,7 @@ impl Default for EhlParams {
             band: 4,
             continuation: true,
             pseudo_time_step: 1.0,
+            wedge_upwind_order: 2,
         }
     }
 }
@@ -624,6 +629,7 @@ fn solve_grid(
                 phys.clone(),
                 problem.load,
                 line_band(grid, params.band),
+                params.wedge_upwind_order != 1,
             );
             let mut st = State::new(grid.len());
             interpolate(&cg, &cst.p, &grid, &mut st.p);
@@ -667,6 +673,7 @@ fn solve_direct(
         phys,
         problem.load,
         line_band(grid, params.band),
+        params.wedge_upwind_order != 1,
     );
 
     let mut st = start(problem, &mut sys, init, alpha);

@@ -172,6 +172,7 @@ impl System {
         phys: Physics,
         load_si: f64,
         band: usize,
+        second_order_wedge: bool,
     ) -> System {
         let n = grid.len();
         let hscale = r / (b * b);
@@ -196,7 +197,7 @@ impl System {
             ny: grid.ny,
             dx: grid.dx / b,
             dy: grid.dy / b,
-            second_order: true,
+            second_order: second_order_wedge,
         };
         let load = load_si / (phys.ph * b * b);
         let n_mat = active.iter().filter(|&&a| a).count();

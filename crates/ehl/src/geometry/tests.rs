@@ -66,6 +66,7 @@ pub(crate) fn case(body1: Body, body2: Body, force: f64) -> Case {
             max_iterations: 100,
             mirror_levels: 0,
             free_end_correction: false,
+            wedge_upwind_order: 2,
         },
     }
 }

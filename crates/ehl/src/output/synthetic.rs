@@ -52,6 +52,7 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
             max_iterations: 200,
             mirror_levels: 0,
             free_end_correction: false,
+            wedge_upwind_order: 2,
         },
     }
 }

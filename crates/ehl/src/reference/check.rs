@@ -322,6 +322,7 @@ mod tests {
                 max_iterations: 200,
                 mirror_levels: 1,
                 free_end_correction: true,
+                wedge_upwind_order: 2,
             },
         }
     }
