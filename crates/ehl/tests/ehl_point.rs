@@ -8,23 +8,9 @@ use ehl::grid::Grid;
 use ehl::units;
 
 /// Ball R on a flat: E' (Pa), load (N), u_e (m/s), eta0, alpha, on n x n cells over [-3a, 3a]^2,
-/// with the default solver settings.
+/// with the given solver settings.
 #[allow(clippy::too_many_arguments)]
 fn solve_ball(
-    r: f64,
-    e: f64,
-    f: f64,
-    ue: f64,
-    eta0: f64,
-    alpha: f64,
-    n: usize,
-) -> (EhlResult, Grid, f64, f64) {
-    solve_ball_with(r, e, f, ue, eta0, alpha, n, &EhlParams::default())
-}
-
-/// [`solve_ball`] with the given solver settings.
-#[allow(clippy::too_many_arguments)]
-fn solve_ball_with(
     r: f64,
     e: f64,
     f: f64,
@@ -84,7 +70,7 @@ fn ball_on_glass_against_ehl_fbns() {
         wedge_upwind_order: 1,
         ..EhlParams::default()
     };
-    let (res, grid, a, _p0) = solve_ball_with(0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9, 129, &params);
+    let (res, grid, a, _p0) = solve_ball(0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9, 129, &params);
     assert!(res.converged, "{}", res.termination);
     let kc = grid.idx(grid.nx / 2, grid.ny / 2);
     let hc = res.film[kc];
@@ -109,7 +95,7 @@ fn ball_on_glass_against_ehl_fbns() {
 #[test]
 fn ball_against_hamrock_dowson() {
     let (r, e, f, ue, eta0, alpha) = (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
-    let (res, grid, _a, _p0) = solve_ball(r, e, f, ue, eta0, alpha, 129);
+    let (res, grid, _a, _p0) = solve_ball(r, e, f, ue, eta0, alpha, 129, &EhlParams::default());
     assert!(res.converged, "{}", res.termination);
     assert!(res.load_error.abs() < 1e-6);
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
@@ -161,7 +147,16 @@ fn centre(grid: &Grid) -> usize {
 /// extrapolated 212.6 nm).
 #[test]
 fn ball_against_mourier_simulation() {
-    let (res, grid, _a, _p0) = solve_ball(0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9, 129);
+    let (res, grid, _a, _p0) = solve_ball(
+        0.0125,
+        110e9,
+        15.0,
+        0.09,
+        0.25,
+        22e-9,
+        129,
+        &EhlParams::default(),
+    );
     assert!(res.converged, "{}", res.termination);
     let kc = centre(&grid);
     let hc = res.film[kc];
