@@ -1049,6 +1049,19 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
 mod tests {
     use super::*;
 
+    /// The legend goes where the data is not: a rising curve leaves the lower right free, a
+    /// falling one the upper right (which is also the choice on a tie).
+    #[test]
+    fn legend_avoids_the_data() {
+        let rising: Vec<(f64, f64)> = (0..=10).map(|i| (i as f64, (i as f64).sqrt())).collect();
+        let r = (0.0, 10.0);
+        let pos = legend_corner(&rising, r, (0.0, 3.2));
+        assert!(matches!(pos, SeriesLabelPosition::LowerRight), "{pos:?}");
+        let falling: Vec<(f64, f64)> = rising.iter().map(|&(x, y)| (x, 3.2 - y)).collect();
+        let pos = legend_corner(&falling, r, (0.0, 3.2));
+        assert!(matches!(pos, SeriesLabelPosition::UpperRight), "{pos:?}");
+    }
+
     #[test]
     fn tick_and_sig_formats() {
         assert_eq!(fmt_tick(0.25, 0.55), "0.25");
@@ -1091,6 +1104,31 @@ const SERIES_COLORS: [RGBColor; 6] = [
     RGBColor(230, 130, 0),
     RGBColor(60, 60, 60),
 ];
+
+/// The corner of the plot area with the fewest data points (in its outer 45 % of x and 35 %
+/// of y), so the legend hides as little of the curves as it can; upper right on a tie.
+fn legend_corner(pts: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> SeriesLabelPosition {
+    let fx = |x: f64| (x - xr.0) / (xr.1 - xr.0);
+    let fy = |y: f64| (y - yr.0) / (yr.1 - yr.0);
+    let count = |right: bool, upper: bool| {
+        pts.iter()
+            .filter(|&&(x, y)| {
+                let (u, v) = (fx(x), fy(y));
+                (if right { u > 0.55 } else { u < 0.45 })
+                    && (if upper { v > 0.65 } else { v < 0.35 })
+            })
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, count(true, true)),
+        (SeriesLabelPosition::LowerRight, count(true, false)),
+        (SeriesLabelPosition::UpperLeft, count(false, true)),
+        (SeriesLabelPosition::LowerLeft, count(false, false)),
+    ]
+    .into_iter()
+    .min_by_key(|&(_, n)| n)
+    .map_or(SeriesLabelPosition::UpperRight, |(p, _)| p)
+}
 
 /// A plain x-y chart with markers and a legend, for parameter studies (`sweep.png`, the
 /// validation pages): `x_label` and `y_label` carry the units. Non-finite points are skipped.
@@ -1178,7 +1216,7 @@ pub fn write_xy(
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(legend_corner(&pts, (x0, x1), (y0, y1)))
             .margin(12)
             .legend_area_size(36)
             .label_font(text_style(16.0, BLACK))
