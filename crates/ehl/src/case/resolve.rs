@@ -1002,7 +1002,7 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
             .count("mirror_levels", "mirror levels at each roller end", 0)?
             .unwrap_or(1),
         free_end_correction: s.boolean("free_end_correction")?.unwrap_or(true),
-        wedge_upwind_order: match s.count("wedge_upwind_order", "order", 0)? {
+        wedge_upwind_order: match s.count("wedge_upwind_order", "upwind order", 1)? {
             None | Some(2) => 2,
             Some(1) => 1,
             Some(o) => {

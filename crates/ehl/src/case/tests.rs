@@ -316,10 +316,15 @@ fn overrides_apply_before_validation() {
     assert_eq!(c.grid.nx, 64);
     let c = parse(ROLLERS, &["solver.wedge_upwind_order=1"]).unwrap();
     assert_eq!(c.solver.wedge_upwind_order, 1);
-    for bad in ["0", "3"] {
+    for (bad, says) in [
+        ("0", "at least 1"),
+        ("-1", "at least 1"),
+        ("3", "1 or 2"),
+        ("1.5", "whole number"),
+    ] {
         let (k, m) = err(ROLLERS, &[&format!("solver.wedge_upwind_order={bad}")]);
         assert_eq!(k, "solver.wedge_upwind_order");
-        assert!(m.contains("1 or 2"), "{m}");
+        assert!(m.contains(says), "{bad}: {m}");
     }
     let (k, m) = err(ROLLERS, &["load.forse=5000"]);
     assert_eq!(k, "load.forse");
