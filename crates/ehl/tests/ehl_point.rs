@@ -1,32 +1,22 @@
 //! Ball on flat (circular point contact): film against EHL-FBNS and Hamrock-Dowson.
 mod common;
 use common::*;
-use ehl::case::{DensityModel, ViscosityModel};
+use ehl::case::{DensityModel, Lubricant, ViscosityModel};
 use ehl::ehl::{solve_steady, EhlParams, EhlProblem, EhlResult};
 use ehl::elastic::{Deflection, FftDeflection};
 use ehl::grid::Grid;
 use ehl::units;
 
-/// Ball R on a flat: E' (Pa), load (N), u_e (m/s), eta0, alpha, on n x n cells over [-3a, 3a]^2,
-/// with the given solver settings.
-#[allow(clippy::too_many_arguments)]
-fn solve_ball(
-    r: f64,
-    e: f64,
-    f: f64,
-    ue: f64,
-    eta0: f64,
-    alpha: f64,
-    n: usize,
-    params: &EhlParams,
-) -> (EhlResult, Grid, f64, f64) {
+/// The EHL-FBNS lubricant (eta0 = 0.25 Pa s, alpha = 22 GPa^-1) with the given laws.
+fn fbns_oil(v: ViscosityModel, d: DensityModel) -> Lubricant {
+    lubricant(0.25, 22e-9, v, d)
+}
+
+/// Ball R = 12.5 mm on a flat, E' = 110 GPa, F = 15 N, u_e = 0.09 m/s (the EHL-FBNS case) with
+/// the lubricant `lub`, on n x n cells over [-3a, 3a]^2, with the given solver settings.
+fn solve_ball(lub: &Lubricant, n: usize, params: &EhlParams) -> (EhlResult, Grid, f64, f64) {
+    let (r, e, f, ue) = (0.0125, 110e9, 15.0, 0.09);
     let hz = units::hertz_point(f, r, e);
-    let lub = lubricant(
-        eta0,
-        alpha,
-        ViscosityModel::Roelands,
-        DensityModel::DowsonHigginson,
-    );
     let a = hz.a;
     let grid = Grid::new(n, n, -3.0 * a, 3.0 * a, -3.0 * a, 3.0 * a);
     let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
@@ -36,7 +26,7 @@ fn solve_ball(
         gap: &gap,
         operator: &op,
         load: f,
-        lubricant: &lub,
+        lubricant: lub,
         entrainment_speed: ue,
         reduced_radius: r,
         reduced_modulus: e,
@@ -70,7 +60,11 @@ fn ball_on_glass_against_ehl_fbns() {
         wedge_upwind_order: 1,
         ..EhlParams::default()
     };
-    let (res, grid, a, _p0) = solve_ball(0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9, 129, &params);
+    let (res, grid, a, _p0) = solve_ball(
+        &fbns_oil(ViscosityModel::Roelands, DensityModel::DowsonHigginson),
+        129,
+        &params,
+    );
     assert!(res.converged, "{}", res.termination);
     let kc = grid.idx(grid.nx / 2, grid.ny / 2);
     let hc = res.film[kc];
@@ -94,8 +88,13 @@ fn ball_on_glass_against_ehl_fbns() {
 /// ~3 % between 256^2 and 129^2). Load balance 1e-6, symmetric about y = 0 to 1e-6 relative.
 #[test]
 fn ball_against_hamrock_dowson() {
-    let (r, e, f, ue, eta0, alpha) = (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
-    let (res, grid, _a, _p0) = solve_ball(r, e, f, ue, eta0, alpha, 129, &EhlParams::default());
+    let (r, e, f, ue, eta0, alpha): (f64, f64, f64, f64, f64, f64) =
+        (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
+    let (res, grid, _a, _p0) = solve_ball(
+        &fbns_oil(ViscosityModel::Roelands, DensityModel::DowsonHigginson),
+        129,
+        &EhlParams::default(),
+    );
     assert!(res.converged, "{}", res.termination);
     assert!(res.load_error.abs() < 1e-6);
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
@@ -148,12 +147,7 @@ fn centre(grid: &Grid) -> usize {
 #[test]
 fn ball_against_mourier_simulation() {
     let (res, grid, _a, _p0) = solve_ball(
-        0.0125,
-        110e9,
-        15.0,
-        0.09,
-        0.25,
-        22e-9,
+        &fbns_oil(ViscosityModel::Roelands, DensityModel::DowsonHigginson),
         129,
         &EhlParams::default(),
     );
@@ -184,27 +178,10 @@ fn ball_against_mourier_simulation() {
 /// scalings moves the film by far more (e.g. E' off by 2 changes h_c by ~10 %).
 #[test]
 fn ball_barus_incompressible_against_nijenbanning() {
-    let (r, e, f, ue, eta0, alpha) = (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
-    let hz = units::hertz_point(f, r, e);
-    let lub = lubricant(eta0, alpha, ViscosityModel::Barus, DensityModel::Constant);
-    let a = hz.a;
-    let grid = Grid::new(129, 129, -3.0 * a, 3.0 * a, -3.0 * a, 3.0 * a);
-    let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
-    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::half_space(g, e)) };
-    let prob = EhlProblem {
-        grid,
-        gap: &gap,
-        operator: &op,
-        load: f,
-        lubricant: &lub,
-        entrainment_speed: ue,
-        reduced_radius: r,
-        reduced_modulus: e,
-        hertz_half_width: a,
-        hertz_pressure: hz.p0,
-        initial_pressure: None,
-    };
-    let res = solve_steady(&prob, &EhlParams::default());
+    let (r, e, f, ue, eta0, alpha): (f64, f64, f64, f64, f64, f64) =
+        (0.0125, 110e9, 15.0, 0.09, 0.25, 22e-9);
+    let lub = fbns_oil(ViscosityModel::Barus, DensityModel::Constant);
+    let (res, grid, _a, _p0) = solve_ball(&lub, 129, &EhlParams::default());
     assert!(res.converged, "{}", res.termination);
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
     let (m, l) = (w * (2.0 * u).powf(-0.75), g * (2.0 * u).powf(0.25));
