@@ -224,55 +224,137 @@ fn only_params(p: &Sec, t: &Table, tag: &str, what: &str, variant: &str, params:
     Ok(())
 }
 
+/// A tagged table: `field = { <tag> = "<variant>", params... }`, or the bare word of the one
+/// variant without parameters (`profile = "straight"`, `rheology = "newtonian"`).
+struct Tagged {
+    /// the key in the parent table: "profile", "rheology"
+    field: &'static str,
+    /// the key naming the variant: "kind", "model"
+    tag: &'static str,
+    variants: &'static [&'static str],
+    /// the variant without parameters, the only one a bare word may name
+    bare: &'static str,
+    /// how messages name a variant: "profile kind", "rheology model"
+    what: &'static str,
+    /// the parameters each variant takes
+    params: fn(&str) -> &'static [&'static str],
+    /// a complete example of each variant, for the messages
+    example: fn(&str) -> &'static str,
+    /// the variant whose example the wrong-type message shows
+    shown: &'static str,
+}
+
+impl Tagged {
+    /// The table and the chosen variant; None when the field is absent or the bare word names
+    /// the parameterless variant. Any other variant, an unknown tag, a foreign key in the table
+    /// or a value of the wrong type is an error naming the key.
+    fn read<'a>(&self, s: &Sec<'a>, key: &'a str) -> R<Option<(Sec<'a>, &'static str)>> {
+        match s.get(self.field) {
+            None => Ok(None),
+            Some(Value::String(w)) => {
+                let v = choose(w, self.variants).map_err(|m| s.err(self.field, m))?;
+                if v != self.bare {
+                    return Err(s.err(
+                        self.field,
+                        format!(
+                            "{} \"{v}\" needs its parameters: write it as a table, e.g. {}",
+                            self.field,
+                            (self.example)(v)
+                        ),
+                    ));
+                }
+                Ok(None)
+            }
+            Some(Value::Table(t)) => {
+                let p = Sec {
+                    file: s.file,
+                    path: key,
+                    table: t,
+                };
+                let list = self
+                    .variants
+                    .iter()
+                    .map(|v| format!("\"{v}\""))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let v = required(
+                    p.choice(self.tag, self.variants)?,
+                    &p,
+                    self.tag,
+                    &format!("the {}: one of {list}", self.what),
+                )?;
+                only_params(&p, t, self.tag, self.what, v, (self.params)(v))?;
+                Ok(Some((p, v)))
+            }
+            Some(v) => Err(s.err(
+                self.field,
+                format!(
+                    "expected a table such as {}, found {}",
+                    (self.example)(self.shown),
+                    describe(v)
+                ),
+            )),
+        }
+    }
+
+    /// The positive parameter `k` (in `unit`) of variant `v`, required.
+    fn need(&self, p: &Sec, v: &str, k: &str, unit: &str) -> R<f64> {
+        required(
+            p.positive(k, unit)?,
+            p,
+            k,
+            &format!(
+                "{k} ({unit}) for {} \"{v}\", e.g. {}",
+                self.what,
+                (self.example)(v)
+            ),
+        )
+    }
+}
+
+const PROFILE: Tagged = Tagged {
+    field: "profile",
+    tag: "kind",
+    variants: PROFILE_KINDS,
+    bare: "straight",
+    what: "profile kind",
+    params: |kind| match kind {
+        "crowned" => &["crown_radius"],
+        "logarithmic" => &["load"],
+        "rounded-edge" => &["edge_length", "edge_radius"],
+        "chamfer" => &["edge_length", "angle"],
+        _ => &[],
+    },
+    example: profile_example,
+    shown: "crowned",
+};
+
+const RHEOLOGY: Tagged = Tagged {
+    field: "rheology",
+    tag: "model",
+    variants: RHEOLOGY_MODELS,
+    bare: "newtonian",
+    what: "rheology model",
+    params: |model| match model {
+        "carreau" => &[
+            "shear_modulus",
+            "power_law_index",
+            "limiting_shear_coefficient",
+        ],
+        "eyring" => &["eyring_stress", "limiting_shear_coefficient"],
+        _ => &[],
+    },
+    example: rheology_example,
+    shown: "carreau",
+};
+
 /// `bodyN.profile`: a table `{ kind = ..., params }` or the bare word "straight".
 fn profile(s: &Sec, length: f64) -> R<Profile> {
     let key = s.key("profile");
-    let p = match s.get("profile") {
+    let p = match PROFILE.read(s, &key)? {
         None => Profile::Straight,
-        Some(Value::String(k)) => {
-            let kind = choose(k, PROFILE_KINDS).map_err(|m| s.err("profile", m))?;
-            if kind != "straight" {
-                return Err(s.err(
-                    "profile",
-                    format!(
-                        "profile \"{kind}\" needs its parameters: write it as a table, e.g. {}",
-                        profile_example(kind)
-                    ),
-                ));
-            }
-            Profile::Straight
-        }
-        Some(Value::Table(t)) => {
-            let p = Sec {
-                file: s.file,
-                path: &key,
-                table: t,
-            };
-            let kind = required(
-                p.choice("kind", PROFILE_KINDS)?,
-                &p,
-                "kind",
-                "the profile kind: \"straight\", \"crowned\", \"logarithmic\", \"rounded-edge\" or \"chamfer\"",
-            )?;
-            let params: &[&str] = match kind {
-                "crowned" => &["crown_radius"],
-                "logarithmic" => &["load"],
-                "rounded-edge" => &["edge_length", "edge_radius"],
-                "chamfer" => &["edge_length", "angle"],
-                _ => &[],
-            };
-            only_params(&p, t, "kind", "profile kind", kind, params)?;
-            let need = |k: &str, unit: &str| -> R<f64> {
-                required(
-                    p.positive(k, unit)?,
-                    &p,
-                    k,
-                    &format!(
-                        "{k} ({unit}) for profile kind \"{kind}\", e.g. {}",
-                        profile_example(kind)
-                    ),
-                )
-            };
+        Some((p, kind)) => {
+            let need = |k: &str, unit: &str| PROFILE.need(&p, kind, k, unit);
             let edge = |p: &Sec, e: f64| -> R<f64> {
                 if length.is_finite() && e >= 0.5 * length {
                     return Err(p.err(
@@ -313,16 +395,6 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
                     Profile::Chamfer { edge_length, angle }
                 }
             }
-        }
-        Some(v) => {
-            return Err(s.err(
-                "profile",
-                format!(
-                    "expected a table such as {}, found {}",
-                    profile_example("crowned"),
-                    describe(v)
-                ),
-            ))
         }
     };
     if length.is_infinite() && p != Profile::Straight {
@@ -610,65 +682,10 @@ fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
 
 fn rheology(s: &Sec) -> R<Rheology> {
     let key = s.key("rheology");
-    let t = match s.get("rheology") {
-        None => return Ok(Rheology::Newtonian),
-        Some(Value::String(m)) => {
-            let m = choose(m, RHEOLOGY_MODELS).map_err(|e| s.err("rheology", e))?;
-            if m != "newtonian" {
-                return Err(s.err(
-                    "rheology",
-                    format!(
-                        "rheology \"{m}\" needs its parameters: write it as a table, e.g. {}",
-                        rheology_example(m)
-                    ),
-                ));
-            }
-            return Ok(Rheology::Newtonian);
-        }
-        Some(Value::Table(t)) => t,
-        Some(v) => {
-            return Err(s.err(
-                "rheology",
-                format!(
-                    "expected a table such as {}, found {}",
-                    rheology_example("carreau"),
-                    describe(v)
-                ),
-            ))
-        }
+    let Some((p, model)) = RHEOLOGY.read(s, &key)? else {
+        return Ok(Rheology::Newtonian);
     };
-    let p = Sec {
-        file: s.file,
-        path: &key,
-        table: t,
-    };
-    let model = required(
-        p.choice("model", RHEOLOGY_MODELS)?,
-        &p,
-        "model",
-        "the rheology model: \"newtonian\", \"carreau\" or \"eyring\"",
-    )?;
-    let params: &[&str] = match model {
-        "carreau" => &[
-            "shear_modulus",
-            "power_law_index",
-            "limiting_shear_coefficient",
-        ],
-        "eyring" => &["eyring_stress", "limiting_shear_coefficient"],
-        _ => &[],
-    };
-    only_params(&p, t, "model", "rheology model", model, params)?;
-    let need = |k: &str, unit: &str| -> R<f64> {
-        required(
-            p.positive(k, unit)?,
-            &p,
-            k,
-            &format!(
-                "{k} ({unit}) for rheology model \"{model}\", e.g. {}",
-                rheology_example(model)
-            ),
-        )
-    };
+    let need = |k: &str, unit: &str| RHEOLOGY.need(&p, model, k, unit);
     let lsc = p.positive("limiting_shear_coefficient", "dimensionless, tau_L / p")?;
     Ok(match model {
         "carreau" => {
