@@ -109,6 +109,21 @@ impl<'a> Sec<'a> {
         }
     }
 
+    /// [`Sec::num`], required: a missing key is an error asking for `what`.
+    pub fn required_num(&self, k: &str, unit: &str, what: &str) -> R<f64> {
+        self.num(k, unit)?.ok_or_else(|| self.missing(k, what))
+    }
+
+    /// [`Sec::finite`], required: a missing key is an error asking for `what`.
+    pub fn required_finite(&self, k: &str, unit: &str, what: &str) -> R<f64> {
+        self.finite(k, unit)?.ok_or_else(|| self.missing(k, what))
+    }
+
+    /// [`Sec::positive`], required: a missing key is an error asking for `what`.
+    pub fn required_positive(&self, k: &str, unit: &str, what: &str) -> R<f64> {
+        self.positive(k, unit)?.ok_or_else(|| self.missing(k, what))
+    }
+
     /// A positive, finite number.
     pub fn positive(&self, k: &str, unit: &str) -> R<Option<f64>> {
         match self.num(k, unit)? {

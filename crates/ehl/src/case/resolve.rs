@@ -82,16 +82,14 @@ fn body(top: &Sec, name: &str) -> R<Body> {
         Some(_) => Shape::Flat,
         None => return Err(s.missing("shape", "shape = \"roller\", \"ball\" or \"flat\"")),
     };
-    let youngs_modulus = required(
-        s.positive("youngs_modulus", "Pa")?,
-        &s,
+    let youngs_modulus = s.required_positive(
         "youngs_modulus",
+        "Pa",
         "Young's modulus in Pa, e.g. youngs_modulus = 210e9 for steel",
     )?;
-    let nu = required(
-        s.num("poisson_ratio", "dimensionless")?,
-        &s,
+    let nu = s.required_num(
         "poisson_ratio",
+        "dimensionless",
         "Poisson's ratio, e.g. poisson_ratio = 0.3 for steel",
     )?;
     if !(nu > -1.0 && nu < 0.5) {
@@ -105,10 +103,9 @@ fn body(top: &Sec, name: &str) -> R<Body> {
     }
 
     let radius_of = |s: &Sec| -> R<f64> {
-        let r = required(
-            s.num("radius", "m")?,
-            s,
+        let r = s.required_num(
             "radius",
+            "m",
             "the radius in the rolling plane in m, e.g. radius = 0.03",
         )?;
         if r.is_infinite() && r > 0.0 {
@@ -147,12 +144,7 @@ fn body(top: &Sec, name: &str) -> R<Body> {
                 "radius_y",
                 "is for balls only (the ellipsoid's radius in the axial plane); a roller's axial shape is set by length and profile",
             )?;
-            let len = required(
-                s.num("length", "m")?,
-                &s,
-                "length",
-                "the roller's axial length in m, e.g. length = 9.5e-3 (length = inf gives an infinite line contact)",
-            )?;
+            let len = s.required_num("length", "m", "the roller's axial length in m, e.g. length = 9.5e-3 (length = inf gives an infinite line contact)")?;
             if len.is_nan() || len <= 0.0 {
                 return Err(s.err(
                     "length",
@@ -299,16 +291,12 @@ impl Tagged {
 
     /// The positive parameter `k` (in `unit`) of variant `v`, required.
     fn need(&self, p: &Sec, v: &str, k: &str, unit: &str) -> R<f64> {
-        required(
-            p.positive(k, unit)?,
-            p,
-            k,
-            &format!(
-                "{k} ({unit}) for {} \"{v}\", e.g. {}",
-                self.what,
-                (self.example)(v)
-            ),
-        )
+        let what = format!(
+            "{k} ({unit}) for {} \"{v}\", e.g. {}",
+            self.what,
+            (self.example)(v)
+        );
+        p.required_positive(k, unit, &what)
     }
 }
 
@@ -612,10 +600,9 @@ fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
         path: "lubricant",
         table: t,
     };
-    let viscosity = required(
-        s.positive("viscosity", "Pa s")?,
-        &s,
+    let viscosity = s.required_positive(
         "viscosity",
+        "Pa s",
         "the viscosity at ambient pressure in Pa s, e.g. viscosity = 0.04",
     )?;
     let alpha = match (
@@ -656,10 +643,9 @@ fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
                 / e_red
         }
     };
-    let density = required(
-        s.positive("density", "kg/m^3")?,
-        &s,
+    let density = s.required_positive(
         "density",
+        "kg/m^3",
         "the density at ambient pressure in kg/m^3, e.g. density = 846",
     )?;
     let viscosity_model = match s.choice("viscosity_model", &["roelands", "barus"])? {
@@ -770,13 +756,8 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
                 path: &key,
                 table: tt,
             };
-            let from = required(
-                p.finite("from", "m")?,
-                &p,
-                "from",
-                "the start position x_p in m",
-            )?;
-            let to = required(p.finite("to", "m")?, &p, "to", "the end position x_p in m")?;
+            let from = p.required_finite("from", "m", "the start position x_p in m")?;
+            let to = p.required_finite("to", "m", "the end position x_p in m")?;
             required(
                 p.count("steps", "time steps", 1)?,
                 &p,
@@ -1100,41 +1081,16 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
                 "file",
                 "the height map file (.npy, heights in m)",
             )?;
-            required(
-                s.positive("dx", "m")?,
-                &s,
-                "dx",
-                "the height map's spacing along x in m",
-            )?;
-            required(
-                s.positive("dy", "m")?,
-                &s,
-                "dy",
-                "the height map's spacing along y in m",
-            )?;
+            s.required_positive("dx", "m", "the height map's spacing along x in m")?;
+            s.required_positive("dy", "m", "the height map's spacing along y in m")?;
             (0.0, 0.0)
         } else {
             for k in ["file", "dx", "dy"] {
                 forbid(&s, k, "is only used by kind = \"height-map\"")?;
             }
-            let w = required(
-                s.positive("width", "m")?,
-                &s,
-                "width",
-                "the feature's width along x in m",
-            )?;
-            let l = required(
-                s.positive("length", "m")?,
-                &s,
-                "length",
-                "the feature's length along y in m",
-            )?;
-            required(
-                s.positive("depth", "m")?,
-                &s,
-                "depth",
-                "the feature's depth in m",
-            )?;
+            let w = s.required_positive("width", "m", "the feature's width along x in m")?;
+            let l = s.required_positive("length", "m", "the feature's length along y in m")?;
+            s.required_positive("depth", "m", "the feature's depth in m")?;
             (w, l)
         };
         let (mut hx, mut hy) = (0.5 * w, 0.5 * l);
