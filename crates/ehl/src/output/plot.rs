@@ -21,6 +21,7 @@ use crate::case::{Case, Kind, Shape};
 use crate::grid::Grid;
 use crate::solution::Solution;
 use crate::{Error, Result};
+use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -507,16 +508,9 @@ fn draw_profile(
         .right_y_label_area_size(if right.is_some() { 86 } else { 0 })
         .build_cartesian_2d(x_range.clone(), left.range.clone())?
         .set_secondary_coord(x_range.clone(), rrange.clone());
-    chart
-        .configure_mesh()
-        .x_labels(10)
-        .y_labels(8)
-        .max_light_lines(0)
-        .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+    line_chart_mesh(&mut chart.configure_mesh())
         .x_label_formatter(&x_fmt)
         .y_label_formatter(&l_fmt)
-        .label_style(text_style(16.0, BLACK))
-        .axis_desc_style(text_style(18.0, BLACK))
         .x_desc("x, rolling direction (mm)   —   inlet ← → outlet")
         .y_desc(left.label.as_str())
         .draw()?;
@@ -1105,6 +1099,24 @@ const SERIES_COLORS: [RGBColor; 6] = [
     RGBColor(60, 60, 60),
 ];
 
+/// The mesh of the line charts (profiles, parameter studies): light grey grid at the major
+/// ticks only, 10 x 8 labels, the fonts of every picture.
+fn line_chart_mesh<'m, 'a, 'b, X, Y, DB>(
+    m: &'m mut MeshStyle<'a, 'b, X, Y, DB>,
+) -> &'m mut MeshStyle<'a, 'b, X, Y, DB>
+where
+    X: Ranged,
+    Y: Ranged,
+    DB: DrawingBackend,
+{
+    m.x_labels(10)
+        .y_labels(8)
+        .max_light_lines(0)
+        .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+        .label_style(text_style(16.0, BLACK))
+        .axis_desc_style(text_style(18.0, BLACK))
+}
+
 /// The corner of the plot area with the fewest data points (in its outer 45 % of x and 35 %
 /// of y), so the legend hides as little of the curves as it can; upper right on a tie.
 fn legend_corner(pts: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> SeriesLabelPosition {
@@ -1182,16 +1194,9 @@ pub fn write_xy(
             .x_label_area_size(62)
             .y_label_area_size(96)
             .build_cartesian_2d(x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_labels(10)
-            .y_labels(8)
-            .max_light_lines(0)
-            .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+        line_chart_mesh(&mut chart.configure_mesh())
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&y_fmt)
-            .label_style(text_style(16.0, BLACK))
-            .axis_desc_style(text_style(18.0, BLACK))
             .x_desc(x_label)
             .y_desc(y_label)
             .draw()?;
