@@ -3,7 +3,15 @@
 //!
 //! A matrix with `kl` sub- and `ku` super-diagonals is stored row by row, each row `i` holding
 //! the columns `i - kl ..= i + kl + ku` (the extra `kl` columns receive the fill-in of row
-//! interchanges). Factorisation costs O(n kl (kl + ku)), a solve O(n (2 kl + ku)).
+//! interchanges during the factorisation, which works on a copy: the matrix itself stays
+//! available for products). The factors are kept column by column for the solves.
+//! Factorisation costs O(n kl (kl + ku)), a solve O(n (2 kl + ku)); [`solve_batch`] solves
+//! several systems of the same shape at once.
+
+thread_local! {
+    /// Work copy of the matrix during [`Banded::factor`] (reused: no allocation per line).
+    static LU: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 /// Banded matrix and, after [`Banded::factor`], its LU factors.
 #[derive(Debug, Clone)]
@@ -14,6 +22,13 @@ pub struct Banded {
     w: usize,
     a: Vec<f64>,
     piv: Vec<usize>,
+    /// after factorisation: the multipliers of column k, rows k+1 ..= k+kl, at k kl ..
+    lower: Vec<f64>,
+    /// after factorisation: column k of U above the diagonal, rows k-1, k-2, ..., k-kl-ku,
+    /// at k (kl + ku) ..
+    upper: Vec<f64>,
+    /// reciprocals of the diagonal of U
+    inv_diag: Vec<f64>,
 }
 
 impl Banded {
@@ -27,12 +42,36 @@ impl Banded {
             w,
             a: vec![0.0; n * w],
             piv: vec![0; n],
+            lower: Vec::new(),
+            upper: Vec::new(),
+            inv_diag: Vec::new(),
         }
     }
 
     /// Order of the matrix.
     pub fn n(&self) -> usize {
         self.n
+    }
+
+    /// Number of sub-diagonals.
+    pub fn kl(&self) -> usize {
+        self.kl
+    }
+
+    /// Number of super-diagonals.
+    pub fn ku(&self) -> usize {
+        self.ku
+    }
+
+    /// y -= A x (the matrix as assembled, also after factorisation).
+    pub fn sub_product(&self, x: &[f64], y: &mut [f64]) {
+        let (n, kl, ku) = (self.n, self.kl, self.ku);
+        for (i, yi) in y.iter_mut().enumerate().take(n) {
+            let lo = i.saturating_sub(kl);
+            let hi = (i + ku).min(n - 1);
+            let row = &self.a[self.at(i, lo)..=self.at(i, hi)];
+            *yi -= row.iter().zip(&x[lo..=hi]).map(|(a, b)| a * b).sum::<f64>();
+        }
     }
 
     /// Reset to zero (keeps the allocation).
@@ -60,7 +99,7 @@ impl Banded {
         }
     }
 
-    /// A[i, j] (before factorisation), 0 outside the band.
+    /// A[i, j] as assembled (also after factorisation), 0 outside the band.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         if self.in_band(i, j) {
             self.a[self.at(i, j)]
@@ -69,17 +108,27 @@ impl Banded {
         }
     }
 
-    /// In-place LU with partial pivoting. Returns false if a pivot is exactly zero or not finite
-    /// (the matrix is then unusable).
+    /// LU with partial pivoting (into the factors; the matrix is kept). Returns false if a
+    /// pivot is exactly zero or not finite (the factors are then unusable).
     pub fn factor(&mut self) -> bool {
+        LU.with(|cell| {
+            let mut w = cell.borrow_mut();
+            w.clear();
+            w.extend_from_slice(&self.a);
+            self.factor_from(&mut w)
+        })
+    }
+
+    /// LU of the matrix copied into `w` (same layout as `a`, which stays the original).
+    fn factor_from(&mut self, w: &mut [f64]) -> bool {
         let (n, kl, ku) = (self.n, self.kl, self.ku);
         for k in 0..n {
             let last = (k + kl).min(n - 1);
             // pivot search in column k, rows k..=last
             let mut p = k;
-            let mut best = self.a[self.at(k, k)].abs();
+            let mut best = w[self.at(k, k)].abs();
             for r in k + 1..=last {
-                let v = self.a[self.at(r, k)].abs();
+                let v = w[self.at(r, k)].abs();
                 if v > best {
                     best = v;
                     p = r;
@@ -93,21 +142,41 @@ impl Banded {
             if p != k {
                 for j in k..=jend {
                     let (x, y) = (self.at(k, j), self.at(p, j));
-                    self.a.swap(x, y);
+                    w.swap(x, y);
                 }
             }
-            let pivot = self.a[self.at(k, k)];
+            let pivot = w[self.at(k, k)];
             for r in k + 1..=last {
                 let irk = self.at(r, k);
-                let l = self.a[irk] / pivot;
-                self.a[irk] = l;
+                let l = w[irk] / pivot;
+                w[irk] = l;
                 if l != 0.0 {
                     for j in k + 1..=jend {
                         let (x, y) = (self.at(r, j), self.at(k, j));
-                        self.a[x] -= l * self.a[y];
+                        w[x] -= l * w[y];
                     }
                 }
             }
+        }
+        // contiguous copies for the solves, column by column: both triangular solves are then
+        // axpy updates without a serial reduction (measured 2x faster than row-wise dots)
+        let wu = kl + ku;
+        for (v, len) in [
+            (&mut self.lower, n * kl),
+            (&mut self.upper, n * wu),
+            (&mut self.inv_diag, n),
+        ] {
+            v.clear();
+            v.resize(len, 0.0);
+        }
+        for k in 0..n {
+            for r in k + 1..=(k + kl).min(n - 1) {
+                self.lower[k * kl + r - k - 1] = w[self.at(r, k)];
+            }
+            for r in k.saturating_sub(wu)..k {
+                self.upper[k * wu + k - 1 - r] = w[self.at(r, k)];
+            }
+            self.inv_diag[k] = 1.0 / w[self.at(k, k)];
         }
         true
     }
@@ -121,18 +190,66 @@ impl Banded {
                 b.swap(k, p);
             }
             let bk = b[k];
-            if bk != 0.0 {
-                for r in k + 1..=(k + kl).min(n - 1) {
-                    b[r] -= self.a[self.at(r, k)] * bk;
+            let m = kl.min(n - 1 - k);
+            if bk != 0.0 && m > 0 {
+                let l = &self.lower[k * kl..k * kl + m];
+                for (br, lr) in b[k + 1..k + 1 + m].iter_mut().zip(l) {
+                    *br -= lr * bk;
                 }
             }
         }
+        let wu = kl + ku;
         for k in (0..n).rev() {
-            let mut s = b[k];
-            for j in k + 1..=(k + kl + ku).min(n - 1) {
-                s -= self.a[self.at(k, j)] * b[j];
+            let xk = b[k] * self.inv_diag[k];
+            b[k] = xk;
+            let m = wu.min(k);
+            if xk != 0.0 && m > 0 {
+                let u = &self.upper[k * wu..k * wu + m];
+                for (br, ur) in b[k - m..k].iter_mut().rev().zip(u) {
+                    *br -= ur * xk;
+                }
             }
-            b[k] = s / self.a[self.at(k, k)];
+        }
+    }
+}
+
+/// Solve `B` systems of the same shape at once (`mats[q]` x_q = `bs[q]`, in place): the
+/// triangular recurrences are interleaved so that their latency chains overlap (measured on
+/// 256-row lines with 6 + 5 diagonals: 1.8x the throughput of one-by-one solves for B = 2).
+pub fn solve_batch<const B: usize>(mats: [&Banded; B], mut bs: [&mut [f64]; B]) {
+    let (n, kl, ku) = (mats[0].n, mats[0].kl, mats[0].ku);
+    debug_assert!(mats.iter().all(|m| m.n == n && m.kl == kl && m.ku == ku));
+    let mut xk = [0.0; B];
+    for k in 0..n {
+        for q in 0..B {
+            let p = mats[q].piv[k];
+            if p != k {
+                bs[q].swap(k, p);
+            }
+            xk[q] = bs[q][k];
+        }
+        let m = kl.min(n - 1 - k);
+        let l: [&[f64]; B] = mats.map(|a| &a.lower[k * kl..k * kl + m]);
+        let s: [&mut [f64]; B] = bs.each_mut().map(|b| &mut b[k + 1..k + 1 + m]);
+        for t in 0..m {
+            for q in 0..B {
+                s[q][t] -= l[q][t] * xk[q];
+            }
+        }
+    }
+    let wu = kl + ku;
+    for k in (0..n).rev() {
+        for q in 0..B {
+            xk[q] = bs[q][k] * mats[q].inv_diag[k];
+            bs[q][k] = xk[q];
+        }
+        let m = wu.min(k);
+        let u: [&[f64]; B] = mats.map(|a| &a.upper[k * wu..k * wu + m]);
+        let s: [&mut [f64]; B] = bs.each_mut().map(|b| &mut b[k - m..k]);
+        for t in 0..m {
+            for q in 0..B {
+                s[q][m - 1 - t] -= u[q][t] * xk[q];
+            }
         }
     }
 }
@@ -166,7 +283,10 @@ mod tests {
             }
             let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
             let mut x = b.clone();
+            let before: Vec<f64> = (0..n * n).map(|k| m.get(k / n, k % n)).collect();
             assert!(m.factor());
+            // the factorisation works on a copy: the matrix is still there for products
+            assert!((0..n * n).all(|k| m.get(k / n, k % n) == before[k]));
             m.solve(&mut x);
             for i in 0..n {
                 let ax: f64 = (0..n).map(|j| dense[i * n + j] * x[j]).sum();
@@ -176,5 +296,38 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A batch solve gives bit for bit the results of the one-by-one solves (same operations,
+    /// only interleaved), with pivoting exercised.
+    #[test]
+    fn batch_equals_single_solves() {
+        let (n, kl, ku) = (37, 6, 5);
+        let mats: Vec<Banded> = (0..4)
+            .map(|q| {
+                let mut m = Banded::new(n, kl, ku);
+                for i in 0..n {
+                    for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                        let v = ((i * 31 + j * 17 + q * 7) % 23) as f64 - 11.0;
+                        m.add(i, j, if i == j { 0.1 * v } else { v });
+                    }
+                }
+                assert!(m.factor());
+                m
+            })
+            .collect();
+        let rhs: Vec<Vec<f64>> = (0..4)
+            .map(|q| (0..n).map(|i| ((i * 13 + q) % 7) as f64 - 3.0).collect())
+            .collect();
+        let mut single = rhs.clone();
+        for (m, b) in mats.iter().zip(&mut single) {
+            m.solve(b);
+        }
+        let mut batch = rhs.clone();
+        let [a, b, c, d] = &mut batch[..] else {
+            unreachable!()
+        };
+        solve_batch([&mats[0], &mats[1], &mats[2], &mats[3]], [a, b, c, d]);
+        assert_eq!(batch, single);
     }
 }
