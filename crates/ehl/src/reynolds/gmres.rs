@@ -11,6 +11,8 @@
 //! slots of a cycle hold the corrections of the previous cycles (LGMRES, Baker, Jessup &
 //! Manteuffel 2005), which the flexible form allows at no extra storage.
 
+use rayon::prelude::*;
+
 /// What a GMRES solve achieved.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GmresOutcome {
@@ -22,9 +24,47 @@ pub struct GmresOutcome {
     pub relative_residual: f64,
 }
 
+/// Work vectors of [`gmres_with`]: the Krylov basis and the preconditioned directions, kept
+/// between calls so that a Newton iteration does not allocate (and page in) some hundred
+/// vectors per step. They are allocated on first use, as many as the iterations need.
+#[derive(Debug, Default)]
+pub struct GmresWork {
+    v: Vec<Vec<f64>>,
+    zs: Vec<Vec<f64>>,
+}
+
+impl GmresWork {
+    fn ensure(&mut self, n: usize, k: usize) {
+        for list in [&mut self.v, &mut self.zs] {
+            if list.first().is_some_and(|x| x.len() != n) {
+                list.clear();
+            }
+            while list.len() <= k {
+                list.push(vec![0.0; n]);
+            }
+        }
+    }
+}
+
 /// Solve A x = b; `x` is overwritten (starts from zero). Stops at `||r|| <= rtol ||b||` or after
 /// `max_iter` iterations. A breakdown or a non-finite value ends the solve with the best x so far.
 pub fn gmres(
+    b: &[f64],
+    x: &mut [f64],
+    restart: usize,
+    max_iter: usize,
+    rtol: f64,
+    matvec: &mut dyn FnMut(&[f64], &mut [f64]),
+    precond: &mut dyn FnMut(&[f64], &mut [f64]),
+) -> GmresOutcome {
+    let mut work = GmresWork::default();
+    gmres_with(&mut work, b, x, restart, max_iter, rtol, matvec, precond)
+}
+
+/// [`gmres`] with caller-kept work vectors.
+#[allow(clippy::too_many_arguments)]
+pub fn gmres_with(
+    work: &mut GmresWork,
     b: &[f64],
     x: &mut [f64],
     restart: usize,
@@ -46,8 +86,7 @@ pub fn gmres(
         out.relative_residual = if bnorm == 0.0 { 0.0 } else { f64::INFINITY };
         return out;
     }
-    let mut v: Vec<Vec<f64>> = vec![vec![0.0; n]; m + 1];
-    let mut zs: Vec<Vec<f64>> = vec![vec![0.0; n]; m];
+    work.ensure(n, 0);
     let mut h = vec![vec![0.0; m]; m + 1]; // h[i][j]
     let (mut cs, mut sn, mut g) = (vec![0.0; m], vec![0.0; m], vec![0.0; m + 1]);
     let mut w = vec![0.0; n];
@@ -73,13 +112,15 @@ pub fn gmres(
         if !beta.is_finite() || beta <= rtol * bnorm || out.iterations >= max_iter {
             return out;
         }
-        for i in 0..n {
-            v[0][i] = r[i] / beta;
+        for (vi, ri) in work.v[0].iter_mut().zip(&r) {
+            *vi = ri / beta;
         }
         g.iter_mut().for_each(|e| *e = 0.0);
         g[0] = beta;
         let mut k = 0;
         while k < m && out.iterations < max_iter {
+            work.ensure(n, k + 1);
+            let (v, zs) = (&mut work.v, &mut work.zs);
             let slot = m - aug.len();
             if k >= slot {
                 zs[k].copy_from_slice(&aug[k - slot]);
@@ -93,9 +134,7 @@ pub fn gmres(
             for i in 0..=k {
                 let hij = dot(&w, &v[i]);
                 h[i][k] = hij;
-                for (wl, vl) in w.iter_mut().zip(&v[i]) {
-                    *wl -= hij * vl;
-                }
+                axpy(&mut w, -hij, &v[i]);
             }
             let hn = norm(&w);
             h[k + 1][k] = hn;
@@ -141,9 +180,7 @@ pub fn gmres(
         }
         dx.iter_mut().for_each(|e| *e = 0.0);
         for (j, yj) in y.iter().enumerate() {
-            for (dl, zl) in dx.iter_mut().zip(&zs[j]) {
-                *dl += yj * zl;
-            }
+            axpy(&mut dx, *yj, &work.zs[j]);
         }
         for (xl, dl) in x.iter_mut().zip(&dx) {
             *xl += dl;
@@ -167,9 +204,36 @@ pub fn gmres(
     }
 }
 
-#[inline]
+/// Vectors at least this long are split over the rayon pool in [`dot`] and the Gram-Schmidt
+/// updates (shorter ones cost more to schedule than to compute).
+const PARALLEL: usize = 1 << 15;
+/// Chunk length of the parallel vector operations.
+const CHUNK: usize = 1 << 13;
+
+/// a . b. Long vectors are summed in fixed chunks, in parallel, and the chunk sums added in
+/// order, so the result does not depend on the thread schedule.
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let serial = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    if a.len() < PARALLEL {
+        return serial(a, b);
+    }
+    let parts: Vec<f64> = a
+        .par_chunks(CHUNK)
+        .zip(b.par_chunks(CHUNK))
+        .map(|(x, y)| serial(x, y))
+        .collect();
+    parts.iter().sum()
+}
+
+/// y += s x.
+fn axpy(y: &mut [f64], s: f64, x: &[f64]) {
+    if y.len() < PARALLEL {
+        y.iter_mut().zip(x).for_each(|(a, b)| *a += s * b);
+    } else {
+        y.par_chunks_mut(CHUNK)
+            .zip(x.par_chunks(CHUNK))
+            .for_each(|(ys, xs)| ys.iter_mut().zip(xs).for_each(|(a, b)| *a += s * b));
+    }
 }
 
 #[inline]
