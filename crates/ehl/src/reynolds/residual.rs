@@ -174,16 +174,20 @@ pub fn residual(
     transient: Option<&Transient>,
     out: &mut [f64],
 ) {
-    for j in 0..g.ny {
-        for i in 0..g.nx {
-            let k = j * g.nx + i;
-            out[k] = if f.active[k] {
-                rhs.map_or(0.0, |r| r[k]) - operator_at(g, f, transient, i, j)
-            } else {
-                0.0
-            };
-        }
-    }
+    use rayon::prelude::*;
+    out.par_chunks_mut(g.nx)
+        .with_min_len(crate::elastic::operator::min_len(g.nx))
+        .enumerate()
+        .for_each(|(j, row)| {
+            for (i, o) in row.iter_mut().enumerate() {
+                let k = j * g.nx + i;
+                *o = if f.active[k] {
+                    rhs.map_or(0.0, |r| r[k]) - operator_at(g, f, transient, i, j)
+                } else {
+                    0.0
+                };
+            }
+        });
 }
 
 /// Dimensionless mass flows (rho H u / (u_e) per unit dimensionless width, integrated over the
