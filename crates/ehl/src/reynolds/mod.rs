@@ -9,4 +9,5 @@
 
 pub mod banded;
 pub mod gmres;
+pub mod multigrid;
 pub mod residual;
