@@ -50,6 +50,29 @@ pub fn log_viscosity_derivative(lub: &Lubricant, p: f64) -> f64 {
     }
 }
 
+/// [`log_relative_viscosity`] and [`log_viscosity_derivative`] together, with one power
+/// evaluation for Roelands (the EHL solver needs both at every cell of every state).
+pub fn log_viscosity_and_derivative(lub: &Lubricant, p: f64) -> (f64, f64) {
+    match lub.viscosity_model {
+        ViscosityModel::Barus => {
+            let a = lub.pressure_viscosity_coefficient;
+            (a * p.max(0.0), if p < 0.0 { 0.0 } else { a })
+        }
+        ViscosityModel::Roelands => {
+            let a = lub.viscosity.ln() - ROELANDS_LN_ETA_INF;
+            let z = roelands_z(lub.viscosity, lub.pressure_viscosity_coefficient);
+            let t = 1.0 + p.max(0.0) / ROELANDS_PR;
+            let tz = t.powf(z);
+            let d = if p < 0.0 {
+                0.0
+            } else {
+                z * a / ROELANDS_PR * tz / t
+            };
+            (a * (tz - 1.0), d)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,5 +107,23 @@ mod tests {
         assert!(viscosity(&r, 1e9) < viscosity(&b, 1e9));
         assert_eq!(viscosity(&r, 0.0), 0.04);
         assert!((viscosity(&b, 1e8) / (0.04 * (15.9e-9f64 * 1e8).exp()) - 1.0).abs() < 1e-12);
+    }
+
+    /// The combined evaluation equals the separate functions (to round-off), both laws, both
+    /// sides of ambient.
+    #[test]
+    fn combined_matches_separate() {
+        for model in [ViscosityModel::Barus, ViscosityModel::Roelands] {
+            let l = lub(model);
+            for p in [-1e6, 0.0, 1e7, 3e8, 1.2e9, 3e9] {
+                let (ln, d) = log_viscosity_and_derivative(&l, p);
+                let (ln0, d0) = (
+                    log_relative_viscosity(&l, p),
+                    log_viscosity_derivative(&l, p),
+                );
+                assert!((ln - ln0).abs() <= 1e-13 * ln0.abs().max(1.0), "{p}");
+                assert!((d - d0).abs() <= 1e-13 * d0.abs().max(1e-30), "{p}");
+            }
+        }
     }
 }
