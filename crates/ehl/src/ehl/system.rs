@@ -69,10 +69,11 @@ impl Physics {
     pub fn eta(&self, p: f64) -> f64 {
         viscosity::log_relative_viscosity(&self.lubricant, self.ph * p).exp()
     }
-    /// d ln(eta)/dP
+    /// (eta/eta0, d ln(eta)/dP) with one power evaluation
     #[inline]
-    pub fn dlneta(&self, p: f64) -> f64 {
-        self.ph * viscosity::log_viscosity_derivative(&self.lubricant, self.ph * p)
+    pub fn eta_dlneta(&self, p: f64) -> (f64, f64) {
+        let (ln, d) = viscosity::log_viscosity_and_derivative(&self.lubricant, self.ph * p);
+        (ln.exp(), self.ph * d)
     }
 }
 
@@ -318,9 +319,10 @@ impl System {
                         h[i] = h0 + gap[i] + def[i];
                         rho[i] = phys.rho(pk);
                         drho[i] = phys.drho(pk);
-                        dlneta[i] = phys.dlneta(pk);
+                        let (eta, dl) = phys.eta_dlneta(pk);
+                        dlneta[i] = dl;
                         let hp = h[i].max(0.0);
-                        eps[i] = rho[i] * hp * hp * hp / (phys.eta(pk) * phys.lambda);
+                        eps[i] = rho[i] * hp * hp * hp / (eta * phys.lambda);
                     } else {
                         p[i] = 0.0;
                         h[i] = 0.0;
@@ -344,31 +346,55 @@ impl System {
     pub fn directional(&mut self, st: &State, v: &[f64], lin: &mut Linear, out: &mut [f64]) {
         let n = self.n();
         let ph = self.phys.ph;
-        for k in 0..n {
-            lin.dp[k] = if self.active[k] { v[k] } else { 0.0 };
-            self.scratch[k] = lin.dp[k] * ph;
-        }
+        let chunk = 8192;
+        (
+            lin.dp.par_chunks_mut(chunk),
+            self.scratch.par_chunks_mut(chunk),
+            v[..n].par_chunks(chunk),
+            self.active.par_chunks(chunk),
+        )
+            .into_par_iter()
+            .for_each(|(dp, sc, v, act)| {
+                for i in 0..dp.len() {
+                    dp[i] = if act[i] { v[i] } else { 0.0 };
+                    sc[i] = dp[i] * ph;
+                }
+            });
         self.op.apply(&self.scratch, &mut lin.dh);
         self.applies += 1;
         let hs = self.hscale;
-        for k in 0..n {
-            if !self.active[k] {
-                lin.dh[k] = 0.0;
-                lin.deps[k] = 0.0;
-                lin.dq[k] = 0.0;
-                continue;
-            }
-            let dh = v[n] + lin.dh[k] * hs;
-            lin.dh[k] = dh;
-            let (dp, h, rho) = (lin.dp[k], st.h[k], st.rho[k]);
-            let drho = st.drho[k] * dp;
-            lin.deps[k] = if h > 0.0 {
-                st.eps[k] * (drho / rho - st.dlneta[k] * dp + 3.0 * dh / h)
-            } else {
-                0.0
-            };
-            lin.dq[k] = drho * h + rho * dh;
-        }
+        let vh0 = v[n];
+        (
+            lin.dh.par_chunks_mut(chunk),
+            lin.deps.par_chunks_mut(chunk),
+            lin.dq.par_chunks_mut(chunk),
+            lin.dp.par_chunks(chunk),
+            self.active.par_chunks(chunk),
+            st.h.par_chunks(chunk),
+            st.rho.par_chunks(chunk),
+            st.eps.par_chunks(chunk),
+            st.drho.par_chunks(chunk),
+            st.dlneta.par_chunks(chunk),
+        )
+            .into_par_iter()
+            .for_each(|(dh, deps, dq, dp, act, h, rho, eps, drho, dlneta)| {
+                for i in 0..dh.len() {
+                    if !act[i] {
+                        dh[i] = 0.0;
+                        deps[i] = 0.0;
+                        dq[i] = 0.0;
+                        continue;
+                    }
+                    dh[i] = vh0 + dh[i] * hs;
+                    let dr = drho[i] * dp[i];
+                    deps[i] = if h[i] > 0.0 {
+                        eps[i] * (dr / rho[i] - dlneta[i] * dp[i] + 3.0 * dh[i] / h[i])
+                    } else {
+                        0.0
+                    };
+                    dq[i] = dr * h[i] + rho[i] * dh[i];
+                }
+            });
         // Pois(P, d eps): Couette switched off by rho H = 0
         let f1 = Fields {
             p: &st.p,
@@ -667,6 +693,8 @@ impl Preconditioner {
         };
         // the coarse grids correct only where the equation is a diffusion (Poiseuille) problem
         let mask: Vec<bool> = (0..n)
+            .into_par_iter()
+            .with_min_len(4096)
             .map(|k| {
                 !set[k] && {
                     let (pois, _) = sys.diagonal(st, k % nx, k / nx);
@@ -728,13 +756,20 @@ pub(crate) fn jacobian_product(
 ) {
     let n = sys.n();
     sys.directional(st, v, lin, &mut out[..n]);
-    for k in 0..n {
-        if set[k] {
-            out[k] = v[k];
-        } else {
-            out[k] = out[k] * c[k] + shift * v[k];
-        }
-    }
+    out[..n]
+        .par_chunks_mut(8192)
+        .zip(v[..n].par_chunks(8192))
+        .zip(c.par_chunks(8192))
+        .zip(set.par_chunks(8192))
+        .for_each(|(((o, v), c), set)| {
+            for i in 0..o.len() {
+                o[i] = if set[i] {
+                    v[i]
+                } else {
+                    o[i] * c[i] + shift * v[i]
+                };
+            }
+        });
     let w = sys.load_scale() * sys.area;
     out[n] = w * v[..n]
         .iter()
