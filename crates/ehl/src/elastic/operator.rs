@@ -107,6 +107,8 @@ fn fast_len(n: usize) -> usize {
 }
 
 /// Zero-padded FFT convolution on a fixed grid with one or two kernels (direct and reflected).
+/// Clones share the plans and kernel spectra and get their own scratch.
+#[derive(Clone)]
 struct Convolver {
     nx: usize,
     ny: usize,
@@ -119,8 +121,8 @@ struct Convolver {
     fwd_y: Arc<dyn Fft<f64>>,
     inv_y: Arc<dyn Fft<f64>>,
     /// kernel spectra, transposed layout [kx][ky] (hx * py), scaled by 1/(px py)
-    direct: Vec<Complex<f64>>,
-    reflected: Option<Vec<Complex<f64>>>,
+    direct: Arc<Vec<Complex<f64>>>,
+    reflected: Option<Arc<Vec<Complex<f64>>>>,
     /// scratch: row spectra (ny * hx), transposed spectra (hx * py) x2, real rows (ny * px)
     rows: Vec<Complex<f64>>,
     spec: Vec<Complex<f64>>,
@@ -145,7 +147,7 @@ impl Convolver {
             c2r: rp.plan_fft_inverse(px),
             fwd_y: cp.plan_fft_forward(py),
             inv_y: cp.plan_fft_inverse(py),
-            direct: Vec::new(),
+            direct: Arc::new(Vec::new()),
             reflected: None,
             rows: vec![Complex::default(); ny * hx],
             spec: vec![Complex::default(); hx * py],
@@ -336,6 +338,8 @@ fn transpose_back(src: &[Complex<f64>], cols: usize, ld: usize, dst: &mut [Compl
 
 /// The DC-FFT elastic operator for a grid: plain half-space, or with mirror images and psi at
 /// the free roller ends, or the plane-strain line operator for the infinite line contact.
+/// A clone shares the kernel spectra (cheap; the build is the expensive part).
+#[derive(Clone)]
 pub struct FftDeflection {
     grid: Grid,
     conv: Convolver,
@@ -403,16 +407,16 @@ impl FftDeflection {
         };
         if line {
             let strip = move |di: isize, _dj: isize| compliance * kernel::strip(di as f64 * dx, a);
-            conv.direct = conv.kernel_spectrum(&strip);
+            conv.direct = Arc::new(conv.kernel_spectrum(&strip));
         } else {
             // image translated by t: source at y_l + t, offset y_j - y_l - t
             let mut terms = vec![(0.0, compliance)];
             terms.extend(translated.iter().copied());
-            conv.direct = conv.kernel_spectrum(&lookup(sum_tables(&terms)));
+            conv.direct = Arc::new(conv.kernel_spectrum(&lookup(sum_tables(&terms))));
             if !reflected.is_empty() {
                 // reflected image: offset (j - l') dy + c, i.e. a shift t = -c
                 let terms: Vec<(f64, f64)> = reflected.iter().map(|&(c, w)| (-c, w)).collect();
-                conv.reflected = Some(conv.kernel_spectrum(&lookup(sum_tables(&terms))));
+                conv.reflected = Some(Arc::new(conv.kernel_spectrum(&lookup(sum_tables(&terms)))));
             }
         }
         FftDeflection {
@@ -472,7 +476,7 @@ impl InverseHalfSpace {
                 *v = Complex::new(symbol * scale, 0.0);
             }
         }
-        conv.direct = spec;
+        conv.direct = Arc::new(spec);
         InverseHalfSpace { grid, conv }
     }
 
