@@ -3,7 +3,10 @@
 //! * infinite line contact (M = 100, L = 10, Roelands + Dowson-Higginson) on 256, 512, 1024 cells
 //!   over [-4.5 b, 1.5 b] (growth with N);
 //! * ball on glass (the EHL-FBNS case: R = 12.5 mm, E' = 110 GPa, F = 15 N, u_e = 0.09 m/s,
-//!   eta0 = 0.25 Pa s, alpha = 22 GPa^-1) on 65^2, 129^2 and 257^2 cells over [-3a, 3a]^2.
+//!   eta0 = 0.25 Pa s, alpha = 22 GPa^-1) on 65^2, 129^2 and 257^2 cells over [-3a, 3a]^2;
+//! * the thesis ch. 2 roller (`examples/ehl_thesis_ch2_roller.toml`: R = 60 mm, L = 9.5 mm,
+//!   6 kN, Roelands + Dowson-Higginson, 1 mirror level + psi) through `run::solve` (dry
+//!   contact, then EHL; no output files) on 64 x 128, 128 x 256 and 256 x 512 cells.
 //!
 //! Run: `cargo bench -p ehl --bench ehl`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -103,5 +106,30 @@ fn ball(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, line, ball);
+fn roller(c: &mut Criterion) {
+    let path = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/ehl_thesis_ch2_roller.toml"
+    ));
+    let mut group = c.benchmark_group("ehl_thesis_roller");
+    group.sample_size(10);
+    for &(nx, ny) in &[(64usize, 128usize), (128, 256), (256, 512)] {
+        let set = [format!("grid.nx={nx}"), format!("grid.ny={ny}")];
+        let case = ehl::case::load_file(path, &set).expect("example case");
+        let sol = ehl::run::solve(&case, &ehl::run::Silent).expect("solve");
+        let sm = &sol.summary;
+        eprintln!(
+            "roller {nx} x {ny}: {} Newton {} residual {:.2e}",
+            sm.termination, sm.iterations, sm.residual
+        );
+        group.bench_with_input(
+            BenchmarkId::from_parameter(format!("{nx}x{ny}")),
+            &case,
+            |bch, case| bch.iter(|| ehl::run::solve(case, &ehl::run::Silent)),
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, line, ball, roller);
 criterion_main!(benches);
