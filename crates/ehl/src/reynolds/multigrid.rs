@@ -477,6 +477,9 @@ mod tests {
                 .map(|k| ((k * 7919) % 13) as f64 - 6.0)
                 .collect();
             let mg = LineMultigrid::new(op.clone(), None).unwrap();
+            // halving down to at most COARSEST cells: 64^2 -> 32^2 -> 16^2, one grid more per
+            // doubling
+            assert_eq!(mg.depth(), 3 + (nx / 64).ilog2() as usize);
             let lines = {
                 let mut f = op.lines.clone();
                 f.iter_mut().for_each(|m| assert!(m.factor()));
