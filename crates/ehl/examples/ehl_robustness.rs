@@ -9,7 +9,11 @@
 //! * `ball`: ball R = 10 mm on a flat, 128 x 128 cells, against the Nijenbanning-Venner-Moes
 //!   circular-contact fit (Moes' point groups).
 //!
-//! `cargo run --release -p ehl --example ehl_robustness [line|roller|ball]`
+//! `cargo run --release -p ehl --example ehl_robustness [line|roller|ball] [fine]`
+//!
+//! With `fine`, only the M = 1000 points at p_h = 1 GPa, on grids that resolve their few-nanometre films
+//! (roller: 1024 x 128 cells over x in [-2.5 b, 1.5 b]; ball: 256 x 256 over
+//! [-2.5 a, 1.5 a] x [-2 a, 2 a]); the default grids are too coarse for them.
 
 use ehl::case::parse_str;
 use ehl::reference::film::{moes_line_central_film, nijenbanning_circular_central};
@@ -18,6 +22,7 @@ use std::time::Instant;
 
 fn main() {
     let kind = std::env::args().nth(1).unwrap_or_else(|| "line".into());
+    let fine = std::env::args().nth(2).is_some_and(|a| a == "fine");
     let (e, nu, r, eta0) = (200e9_f64, 0.3_f64, 0.01_f64, 0.04_f64);
     let e_red = 2.0 / (2.0 * (1.0 - nu * nu) / e);
     println!("{kind}:\n");
@@ -34,8 +39,11 @@ fn main() {
             cases.push((1.0e9, m, l));
         }
     }
+    if fine {
+        cases.retain(|c| c.1 >= 1000.0 && c.0 == 1.0e9);
+    }
     if kind == "ball" {
-        return balls(&cases, e, nu, r, eta0, e_red);
+        return balls(&cases, e, nu, r, eta0, e_red, fine);
     }
     let roller = kind == "roller";
     for (ph, m, l) in cases {
@@ -44,7 +52,9 @@ fn main() {
         let two_u = (w / m).powi(2);
         let u = 0.5 * two_u;
         let g = l / two_u.powf(0.25);
-        let (length, grid) = if roller {
+        let (length, grid) = if roller && fine {
+            ("10e-3", "nx = 1024\nny = 128\nx_min = -2.5\nx_max = 1.5")
+        } else if roller {
             ("10e-3", "nx = 256\nny = 128\nx_min = -4.5\nx_max = 1.5")
         } else {
             ("inf", "nx = 1024\nny = 1\nx_min = -6.0\nx_max = 1.5")
@@ -67,7 +77,7 @@ fn main() {
 }
 
 /// The ball-on-flat envelope: p_h sets the load, M and L the speed and G (Moes point groups).
-fn balls(cases: &[(f64, f64, f64)], e: f64, nu: f64, r: f64, eta0: f64, e_red: f64) {
+fn balls(cases: &[(f64, f64, f64)], e: f64, nu: f64, r: f64, eta0: f64, e_red: f64, fine: bool) {
     for &(ph, m, l) in cases {
         let f = ehl::units::point_load_for_pressure(ph, r, e_red);
         let w = f / (e_red * r * r);
@@ -78,7 +88,11 @@ fn balls(cases: &[(f64, f64, f64)], e: f64, nu: f64, r: f64, eta0: f64, e_red: f
         let ball =
             format!("shape = \"ball\"\nradius = {r}\nyoungs_modulus = {e}\npoisson_ratio = {nu}");
         let flat = format!("shape = \"flat\"\nyoungs_modulus = {e}\npoisson_ratio = {nu}");
-        let grid = "nx = 128\nny = 128\nx_min = -4.5\nx_max = 1.5\ny_min = -3.0\ny_max = 3.0";
+        let grid = if fine {
+            "nx = 256\nny = 256\nx_min = -2.5\nx_max = 1.5\ny_min = -2.0\ny_max = 2.0"
+        } else {
+            "nx = 128\nny = 128\nx_min = -4.5\nx_max = 1.5\ny_min = -3.0\ny_max = 3.0"
+        };
         let text = case_text(&ball, &flat, &format!("force = {f}"), u, g, eta0, grid, "");
         let fit = nijenbanning_circular_central(m, l) * two_u.sqrt() * r;
         row(&text, ph, m, l, fit);
