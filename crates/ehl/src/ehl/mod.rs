@@ -29,7 +29,7 @@ use crate::case::Lubricant;
 use crate::elastic::Deflection;
 use crate::grid::Grid;
 use crate::reference::film;
-use crate::reynolds::gmres::{gmres_with, norm, GmresWork};
+use crate::reynolds::gmres::{gmres, norm, GmresWork};
 use crate::reynolds::residual;
 use system::{jacobian_product, Linear, Physics, Preconditioner, State, System};
 
@@ -257,7 +257,7 @@ fn newton(
         let rhs: Vec<f64> = r.iter().map(|v| -v).collect();
         let out = {
             let st_ref: &State = st;
-            gmres_with(
+            gmres(
                 &mut work,
                 &rhs,
                 &mut u,

@@ -24,7 +24,7 @@ pub struct GmresOutcome {
     pub relative_residual: f64,
 }
 
-/// Work vectors of [`gmres_with`]: the Krylov basis and the preconditioned directions, kept
+/// Work vectors of [`gmres`]: the Krylov basis and the preconditioned directions, kept
 /// between calls so that a Newton iteration does not allocate (and page in) some hundred
 /// vectors per step. They are allocated on first use, as many as the iterations need.
 #[derive(Debug, Default)]
@@ -48,22 +48,9 @@ impl GmresWork {
 
 /// Solve A x = b; `x` is overwritten (starts from zero). Stops at `||r|| <= rtol ||b||` or after
 /// `max_iter` iterations. A breakdown or a non-finite value ends the solve with the best x so far.
-pub fn gmres(
-    b: &[f64],
-    x: &mut [f64],
-    restart: usize,
-    max_iter: usize,
-    rtol: f64,
-    matvec: &mut dyn FnMut(&[f64], &mut [f64]),
-    precond: &mut dyn FnMut(&[f64], &mut [f64]),
-) -> GmresOutcome {
-    let mut work = GmresWork::default();
-    gmres_with(&mut work, b, x, restart, max_iter, rtol, matvec, precond)
-}
-
-/// [`gmres`] with caller-kept work vectors.
+/// `work` holds the Krylov vectors between calls (`GmresWork::default()` for a single solve).
 #[allow(clippy::too_many_arguments)]
-pub fn gmres_with(
+pub fn gmres(
     work: &mut GmresWork,
     b: &[f64],
     x: &mut [f64],
@@ -268,6 +255,7 @@ mod tests {
         let b: Vec<f64> = (0..n).map(|i| ((i * 7) % 11) as f64 - 5.0).collect();
         let mut x = vec![0.0; n];
         let o = gmres(
+            &mut GmresWork::default(),
             &b,
             &mut x,
             10,
@@ -297,6 +285,7 @@ mod tests {
             }
         };
         let o = gmres(
+            &mut GmresWork::default(),
             &b,
             &mut x,
             10,

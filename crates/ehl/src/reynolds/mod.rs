@@ -3,7 +3,9 @@
 //! * [`residual`]: the finite-volume Reynolds operator in the dimensionless Venner-Lubrecht
 //!   form, its residual and the mass-flow diagnostics;
 //! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
-//! * [`gmres`]: restarted, right-preconditioned GMRES (the Newton steps).
+//! * [`multigrid`]: line-relaxation aggregation multigrid for the local part of the linearised
+//!   operator (the Newton preconditioner on 2D grids);
+//! * [`gmres`]: restarted, flexible, right-preconditioned GMRES (the Newton steps).
 //!
 //! The EHL Newton-Krylov solver that couples them to the elastic operator is [`crate::ehl`].
 

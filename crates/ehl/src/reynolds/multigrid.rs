@@ -487,6 +487,7 @@ mod tests {
             };
             let mut x = vec![0.0; b.len()];
             let out = crate::reynolds::gmres::gmres(
+                &mut crate::reynolds::gmres::GmresWork::default(),
                 &b,
                 &mut x,
                 60,
