@@ -11,7 +11,7 @@
 //!   Newton / primal-dual active set for cavitation) and the load balance (see [`system`]);
 //! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
 //!   1e-1 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs, see
-//!   [`ETA_MAX`]), J v by the exact directional derivative (one elastic operator application
+//!   `ETA_MAX`), J v by the exact directional derivative (one elastic operator application
 //!   per product), right-preconditioned by the local part of J (the Poiseuille stencil and the
 //!   elastic wedge coupling within a band along x, see `line_band`) solved by one V-cycle of
 //!   line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur complement;
