@@ -20,7 +20,7 @@
 //! | discrete Reynolds equation and its solvers | [`reynolds`] |
 //! | EHL coupling: film, load balance, drivers | [`ehl`] |
 //! | shear stress and friction integral | [`friction`] |
-//! | analytic and classical reference results | [`reference`] |
+//! | analytic and classical reference results | [`reference`](mod@reference) |
 //! | writers | [`output`] |
 //!
 //! Conventions (written once here): SI units everywhere in the public API (m, Pa, N, s, Pa s,

@@ -1,5 +1,5 @@
 //! The validated case: every key resolved, every default filled, every value checked.
-//! Solvers and writers read only this; [`super::load`] builds it from a TOML file.
+//! Solvers and writers read only this; [`super::load_file`] builds it from a TOML file.
 //!
 //! All quantities SI (m, Pa, N, m/s, Pa s, kg/m^3, rad). Serialised into `summary.json` as the
 //! resolved case, with the same key names as the case file.

@@ -8,7 +8,7 @@
 //! Newton-Krylov method (Knoll & Keyes, J. Comput. Phys. 193 (2004) 357-397):
 //!
 //! * unknowns P (every cell with material) and H0; equations Phi = min(P, c F) = 0 (semismooth
-//!   Newton / primal-dual active set for cavitation) and the load balance (see [`system`]);
+//!   Newton / primal-dual active set for cavitation) and the load balance (see `system`);
 //! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
 //!   1e-1 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs, see
 //!   `ETA_MAX`), J v by the exact directional derivative (one elastic operator application
@@ -69,7 +69,7 @@ pub struct EhlParams {
     /// maximum GMRES iterations per Newton step
     pub max_linear_iterations: usize,
     /// least half-width (cells) of the elastic coupling kept in the line preconditioner; on 2D
-    /// grids it is widened to dy / (2 dx) (at most 64), see [`line_band`]
+    /// grids it is widened to dy / (2 dx) (at most 64), see `line_band`
     pub band: usize,
     /// fall back to continuation in alpha when Newton fails from the start
     pub continuation: bool,
