@@ -508,10 +508,10 @@ impl System {
 /// [`System::scaling`]) for the cell to take part in the coarse-grid correction of the
 /// preconditioner. Aggregation coarse grids approximate the diffusion operator of the inlet
 /// and the sides well, but not the wedge term on the elastic kernel in the contact, where a
-/// coarse correction made the GMRES counts worse (thesis roller 128 x 256: 26 GMRES per
-/// Newton step with all cells, 10-11 with the Poiseuille-dominated ones, against 10 with line
-/// solves alone, which however need 115 instead of ~25 in the final steps). Shares 0.9-0.99
-/// gave the same counts within one iteration.
+/// coarse correction made the GMRES counts worse (thesis roller 128 x 256, first Newton steps
+/// on the finest grid: 26-28 GMRES per step with all cells or a share of 0.5, 8-11 with 0.9 or
+/// more, 8-10 with line solves alone, which however need 115 instead of ~25 in the final
+/// steps). Shares 0.9-0.99 gave the same counts within a few iterations.
 const COARSE_POISEUILLE_SHARE: f64 = 0.95;
 
 /// The right preconditioner M ~ J of one Newton step (see the module doc).
@@ -555,11 +555,11 @@ impl Preconditioner {
         } = LineOperator::zero(nx, ny, kl.min(nx - 1), ku.min(nx - 1), fine);
         let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
         let (active, khat) = (&sys.active[..], &sys.khat[..]);
-        let ok = lines
+        lines
             .par_iter_mut()
             .with_min_len(min_len(nx))
             .enumerate()
-            .all(|(j, m)| {
+            .for_each(|(j, m)| {
                 let f = st.fields(active);
                 for i in 0..nx {
                     let k = j * nx + i;
@@ -649,11 +649,7 @@ impl Preconditioner {
                         }
                     }
                 }
-                true
             });
-        if !ok {
-            return None;
-        }
         // coupling to the cells below and above: the y faces of the Poiseuille term, with eps
         // of the neighbour frozen except for its own pressure dependence (rho'/rho - eta'/eta)
         let n = nx * ny;
