@@ -177,6 +177,7 @@ fn newton(
 ) -> StageEnd {
     let n = sys.n();
     let mut c = vec![0.0; n];
+    let mut share = vec![0.0; n];
     let mut set = vec![false; n];
     let mut set_t = vec![false; n];
     let mut r = vec![0.0; n + 1];
@@ -203,7 +204,7 @@ fn newton(
             if !st.is_finite() {
                 break (false, String::from("non-finite state"));
             }
-            sys.scaling(st, &mut c);
+            sys.scaling(st, &mut c, Some(&mut share));
             sys.merit_vector(st, &c, &mut r, &mut set);
             let res = sys.relative_residual(st, &c);
             let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
@@ -251,7 +252,9 @@ fn newton(
         } else {
             0.0
         };
-        let Some(pc) = Preconditioner::new(sys, st, &c, &set, &bcol, shift, spare_pc.take()) else {
+        let Some(pc) =
+            Preconditioner::new(sys, st, &c, &set, &share, &bcol, shift, spare_pc.take())
+        else {
             break (false, String::from("singular preconditioner"));
         };
         let rhs: Vec<f64> = r.iter().map(|v| -v).collect();
@@ -324,7 +327,7 @@ fn newton(
     } else {
         // converged: cells of the active set carry P = 0 exactly (not a round-off positive value),
         // so the mass flows see a clean cavitation boundary
-        sys.scaling(st, &mut c);
+        sys.scaling(st, &mut c, None);
         sys.merit_vector(st, &c, &mut r, &mut set);
         if (0..n).any(|k| set[k] && st.p[k] != 0.0) {
             for k in 0..n {
@@ -335,7 +338,7 @@ fn newton(
             sys.eval(st);
         }
     }
-    sys.scaling(st, &mut c);
+    sys.scaling(st, &mut c, None);
     StageEnd {
         converged: end.0,
         reason: end.1,

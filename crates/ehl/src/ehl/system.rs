@@ -419,18 +419,24 @@ impl System {
     }
 
     /// The per-cell scaling c_k = 1 / (Poiseuille diagonal + |wedge diagonal|) of the
-    /// min-function (0 on cells without material).
-    pub fn scaling(&self, st: &State, c: &mut [f64]) {
+    /// min-function (0 on cells without material); with `share`, also the Poiseuille part's
+    /// share c_k Pois_k of that diagonal (what the preconditioner's coarse grids select by).
+    pub fn scaling(&self, st: &State, c: &mut [f64], mut share: Option<&mut [f64]>) {
         let rg = &self.rg;
         for j in 0..rg.ny {
             for i in 0..rg.nx {
                 let k = j * rg.nx + i;
-                c[k] = if self.active[k] {
+                let (ck, sk) = if self.active[k] {
                     let (pois, wedge) = self.diagonal(st, i, j);
-                    1.0 / (pois + wedge.abs())
+                    let ck = 1.0 / (pois + wedge.abs());
+                    (ck, ck * pois)
                 } else {
-                    0.0
+                    (0.0, 0.0)
                 };
+                c[k] = ck;
+                if let Some(s) = share.as_deref_mut() {
+                    s[k] = sk;
+                }
             }
         }
     }
@@ -504,7 +510,7 @@ impl System {
     }
 }
 
-/// Least share of the Poiseuille part in the diagonal of a Reynolds row (c_k Pois_k, see
+/// Least share of the Poiseuille part in the diagonal of a Reynolds row (c_k Pois_k, from
 /// [`System::scaling`]) for the cell to take part in the coarse-grid correction of the
 /// preconditioner. Aggregation coarse grids approximate the diffusion operator of the inlet
 /// and the sides well, but not the wedge term on the elastic kernel in the contact, where a
@@ -529,14 +535,16 @@ pub(crate) struct Preconditioner {
 impl Preconditioner {
     /// Assemble and factor at the state `st` with scaling `c` and active set `set`;
     /// `bcol` = dR/dH0 (length n). Returns None if a line matrix is singular.
-    /// `shift` is the pseudo-transient diagonal 1/dtau on the Reynolds rows. `spare`, the
-    /// previous step's preconditioner, lends its storage.
+    /// `shift` is the pseudo-transient diagonal 1/dtau on the Reynolds rows. `share` is the
+    /// Poiseuille share of each diagonal (from [`System::scaling`]). `spare`, the previous
+    /// step's preconditioner, lends its storage.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         sys: &System,
         st: &State,
         c: &[f64],
         set: &[bool],
+        share: &[f64],
         bcol: &[f64],
         shift: f64,
         spare: Option<Preconditioner>,
@@ -689,14 +697,7 @@ impl Preconditioner {
         };
         // the coarse grids correct only where the equation is a diffusion (Poiseuille) problem
         let mask: Vec<bool> = (0..n)
-            .into_par_iter()
-            .with_min_len(4096)
-            .map(|k| {
-                !set[k] && {
-                    let (pois, _) = sys.diagonal(st, k % nx, k / nx);
-                    c[k] * pois >= COARSE_POISEUILLE_SHARE
-                }
-            })
+            .map(|k| !set[k] && share[k] >= COARSE_POISEUILLE_SHARE)
             .collect();
         let mg = LineMultigrid::reusing(op, Some(mask), spare)?;
         let mut pc = Preconditioner {
