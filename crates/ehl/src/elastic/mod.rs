@@ -23,7 +23,7 @@ use crate::grid::Grid;
 /// A linear map from cell pressures to cell-centre deflections: the operator the dry and EHL
 /// solvers share. Implementations plan their scratch space once at construction; `apply`
 /// writes into a caller-owned buffer and allocates nothing.
-pub trait Deflection: Send + Sync {
+pub trait Deflection: Send {
     /// The grid the operator acts on.
     fn grid(&self) -> &Grid;
 
