@@ -421,6 +421,21 @@ mod tests {
         }
     }
 
+    /// A[k, m] of a line operator as a dense matrix.
+    fn entry(op: &LineOperator, k: usize, m: usize) -> f64 {
+        let nx = op.nx;
+        let (i, j, l, jm) = (k % nx, k / nx, m % nx, m / nx);
+        if j == jm {
+            op.lines[j].get(i, l)
+        } else if jm + 1 == j && i == l {
+            op.south[k]
+        } else if jm == j + 1 && i == l {
+            op.north[k]
+        } else {
+            0.0
+        }
+    }
+
     /// The coarse operator is P^T A P: checked against the product formed entry by entry with
     /// the dense matrices (exact to round-off), on odd sizes so partial aggregates occur.
     #[test]
@@ -429,38 +444,17 @@ mod tests {
         let c = op.coarsen(None, None);
         let (nx, ny, ncx) = (op.nx, op.ny, c.nx);
         let n = nx * ny;
-        let dense = |k: usize, m: usize| -> f64 {
-            let (i, j, l, jm) = (k % nx, k / nx, m % nx, m / nx);
-            if j == jm {
-                op.lines[j].get(i, l)
-            } else if jm + 1 == j && i == l {
-                op.south[k]
-            } else if jm == j + 1 && i == l {
-                op.north[k]
-            } else {
-                0.0
-            }
-        };
         let agg = |k: usize| (k / nx / 2) * ncx + (k % nx) / 2;
         let nc = c.nx * c.ny;
         let mut ac = vec![0.0; nc * nc];
         for k in 0..n {
             for m in 0..n {
-                ac[agg(k) * nc + agg(m)] += dense(k, m);
+                ac[agg(k) * nc + agg(m)] += entry(&op, k, m);
             }
         }
         for kc in 0..nc {
             for mc in 0..nc {
-                let (i, j, l, jm) = (kc % ncx, kc / ncx, mc % ncx, mc / ncx);
-                let got = if j == jm {
-                    c.lines[j].get(i, l)
-                } else if jm + 1 == j && i == l {
-                    c.south[kc]
-                } else if jm == j + 1 && i == l {
-                    c.north[kc]
-                } else {
-                    0.0
-                };
+                let got = entry(&c, kc, mc);
                 assert!((got - ac[kc * nc + mc]).abs() < 1e-12, "({kc}, {mc})");
             }
         }
