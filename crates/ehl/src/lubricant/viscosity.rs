@@ -50,8 +50,10 @@ pub fn log_viscosity_derivative(lub: &Lubricant, p: f64) -> f64 {
     }
 }
 
-/// [`log_relative_viscosity`] and [`log_viscosity_derivative`] together, with one power
-/// evaluation for Roelands (the EHL solver needs both at every cell of every state).
+/// (ln(eta/eta0), d ln(eta)/dp in 1/Pa) at pressure `p` (Pa): [`log_relative_viscosity`] and
+/// [`log_viscosity_derivative`] together (thesis eq. 2.11 for Roelands, the same laws and
+/// constants), with one power evaluation for Roelands: the EHL solver needs both at every cell
+/// of every state.
 pub fn log_viscosity_and_derivative(lub: &Lubricant, p: f64) -> (f64, f64) {
     match lub.viscosity_model {
         ViscosityModel::Barus => {
