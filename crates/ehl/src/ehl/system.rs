@@ -28,7 +28,8 @@
 //! lines) the inlet, where eps is large and the equation a Poisson problem, leaves error modes
 //! smooth in y to the outer GMRES. On the thesis roller at 256 x 512 cells the last Newton
 //! steps needed 152 and 303 GMRES iterations; with the V-cycle 31 and 35, and the whole run
-//! fell from 11.4 s to under 4 s. An exact solve of the local operator (inner GMRES to 1e-6,
+//! fell from 11.4 s to ~3.5 s (2.4 s for the solve with the session's other changes, see
+//! BENCHMARKS.md). An exact solve of the local operator (inner GMRES to 1e-6,
 //! measured on 128 x 256 only, as a bound) needed 58 outer iterations on the fine grid against
 //! 189 with line solves and ~80 with the V-cycle.
 

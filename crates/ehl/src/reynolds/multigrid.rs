@@ -19,8 +19,10 @@
 //! * coarse grids by aggregation of 2 x 2 cells (piecewise-constant prolongation P, restriction
 //!   P^T) with the Galerkin operator A_c = P^T A P, which keeps the line structure: one banded
 //!   block per coarse line plus vertical couplings (Vanek, Mandel & Brezina 1996; Notay 2010
-//!   for aggregation AMG on convection-diffusion, where it keeps the upwind M-matrix sign
-//!   pattern of the wedge term);
+//!   for aggregation AMG on convection-diffusion, where it keeps the M-matrix sign pattern of
+//!   a first-order upwind term). The EHL wedge term acting through the elastic kernel is not
+//!   of that kind, so the caller can restrict the coarse grids to a mask of fine cells (the
+//!   EHL preconditioner keeps the Poiseuille-dominated ones);
 //! * the coarsest grid (at most [`COARSEST`] cells, or a single line) is solved exactly by a
 //!   banded LU of the whole operator (bandwidth nx).
 //!
