@@ -20,6 +20,7 @@
 //! | discrete Reynolds equation and its solvers | [`reynolds`] |
 //! | EHL coupling: film, load balance, drivers | [`ehl`] |
 //! | shear stress and friction integral | [`friction`] |
+//! | surface features (pits, dents, waviness, height maps) as cell averages | [`surface`] |
 //! | analytic and classical reference results | [`reference`](mod@reference) |
 //! | writers | [`output`] |
 //!
@@ -45,6 +46,7 @@ pub mod reference;
 pub mod reynolds;
 pub mod run;
 pub mod solution;
+pub mod surface;
 pub mod units;
 
 pub use error::{Error, Result};
