@@ -62,6 +62,23 @@ fn gauss_legendre_rule_is_exact_to_degree_11() {
 }
 
 #[test]
+fn gauss_legendre_4_is_exact_to_degree_7() {
+    for k in 0..=8 {
+        let q: f64 = GL4.iter().map(|&(t, w)| w * t.powi(k)).sum();
+        let exact = if k % 2 == 1 {
+            0.0
+        } else {
+            2.0 / (k + 1) as f64
+        };
+        if k <= 7 {
+            assert!((q - exact).abs() < 1e-15, "x^{k}: {q} vs {exact}");
+        } else {
+            assert!((q - exact).abs() > 1e-4, "x^8 should not be exact");
+        }
+    }
+}
+
+#[test]
 fn pit_cell_averages_integrate_to_its_volume() {
     for g in grids() {
         for &(c, shift) in &[((0.0, 0.0), 0.0), ((0.123e-3, -0.071e-3), 0.0371e-3)] {
@@ -325,7 +342,11 @@ fn dent_volume_formula_is_the_integral_of_the_cosine_bump() {
 
 #[test]
 fn dent_cell_averages_integrate_to_its_volume() {
-    for g in grids() {
+    let mut gs = grids();
+    // fine grids: the dent spans tens of cells (the 4-point rule on short intervals)
+    gs.push(Grid::new(96, 80, -0.5e-3, 0.45e-3, -0.4e-3, 0.41e-3));
+    gs.push(Grid::new(257, 200, -0.5e-3, 0.45e-3, -0.4e-3, 0.41e-3));
+    for g in gs {
         for &(w, l, c) in &[
             (0.4e-3, 0.5e-3, (0.0, 0.0)),
             (0.37e-3, 0.21e-3, (0.0123e-3, -0.0456e-3)),
