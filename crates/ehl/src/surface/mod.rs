@@ -436,7 +436,7 @@ impl Feature {
 }
 
 impl Surface {
-    /// An empty (smooth) surface.
+    /// A surface carrying `features` (an empty list: the smooth surface).
     pub fn new(features: Vec<Feature>) -> Self {
         Surface { features }
     }
