@@ -27,10 +27,10 @@
 //!   since `int_0^1 r cos(pi r) dr = -2/pi^2`. A groove carries `d * width / 2` per unit length.
 //! * [`FeatureShape::Waviness`] — harmonic over the whole body, crests along `y` (user contract):
 //!   `d = amplitude * cos(2 pi xi / wavelength)`.
-//! * [`FeatureShape::HeightMap`] — measured heights (m) on a node lattice centred on
-//!   `(x_c, y_c)`, bilinear between the nodes, zero outside the lattice (user contract). A
-//!   **height** is material added to the surface (case-file: "heights added to the roller
-//!   surface"), so `d = -height`.
+//! * [`FeatureShape::HeightMap`] — measured depths (m) on a node lattice centred on
+//!   `(x_c, y_c)`, bilinear between the nodes, zero outside the lattice (user contract: "a 2D
+//!   .npy array of depths in m"); like every depth here, positive opens the gap. A measured
+//!   height profile z(x, y) enters as its negative.
 //!
 //! Any localized shape (all but waviness) may be repeated on a rectangular [`Pattern`] centred on
 //! `(x_c, y_c)`: rows along `x`, columns along `y`, pitches centre to centre (the thesis' 3-pit and
@@ -109,18 +109,18 @@ pub enum FeatureShape {
     Dent { width: f64, length: f64, depth: f64 },
     /// `amplitude * cos(2 pi (x - s - x_c) / wavelength)` over the whole body.
     Waviness { amplitude: f64, wavelength: f64 },
-    /// Measured surface heights, bilinear between nodes; depth is `-height`.
+    /// Measured surface depths, bilinear between nodes (positive below the smooth surface).
     HeightMap(HeightMap),
 }
 
-/// Surface heights (m) on a lattice of nodes centred on the feature's centre: node `(j, i)`
+/// Surface depths (m) on a lattice of nodes centred on the feature's centre: node `(j, i)`
 /// (row `j` along `y`, column `i` along `x`) sits at
-/// `(x_c + (i - (ncols - 1)/2) dx, y_c + (j - (nrows - 1)/2) dy)`. Positive heights raise the
-/// surface (close the gap).
+/// `(x_c + (i - (ncols - 1)/2) dx, y_c + (j - (nrows - 1)/2) dy)`. Positive depths lower the
+/// surface (open the gap), as every feature depth.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeightMap {
-    /// `heights[[j, i]]`: rows along `y`, columns along `x` (m).
-    pub heights: Array2<f64>,
+    /// `depths[[j, i]]`: rows along `y`, columns along `x` (m).
+    pub depths: Array2<f64>,
     /// node spacing along `x` (m)
     pub dx: f64,
     /// node spacing along `y` (m)
@@ -156,10 +156,10 @@ impl Pattern {
 }
 
 impl HeightMap {
-    /// Height (m, positive raises the surface) at `(xi, eta)` relative to the map's centre:
+    /// Depth (m, positive lowers the surface) at `(xi, eta)` relative to the map's centre:
     /// bilinear between the nodes, zero outside the lattice.
-    pub fn height(&self, xi: f64, eta: f64) -> f64 {
-        let (ny, nx) = self.heights.dim();
+    pub fn depth(&self, xi: f64, eta: f64) -> f64 {
+        let (ny, nx) = self.depths.dim();
         if nx < 2 || ny < 2 {
             return 0.0;
         }
@@ -177,7 +177,7 @@ impl HeightMap {
     /// coordinates `t, u` in `[0, 1]`.
     #[inline]
     fn bilinear(&self, p: usize, q: usize, t: f64, u: f64) -> f64 {
-        let h = &self.heights;
+        let h = &self.depths;
         let lo = h[[q, p]] + t * (h[[q, p + 1]] - h[[q, p]]);
         let hi = h[[q + 1, p]] + t * (h[[q + 1, p + 1]] - h[[q + 1, p]]);
         lo + u * (hi - lo)
@@ -185,7 +185,7 @@ impl HeightMap {
 
     /// Half extents `(x, y)` of the lattice (m).
     fn half_extent(&self) -> (f64, f64) {
-        let (ny, nx) = self.heights.dim();
+        let (ny, nx) = self.depths.dim();
         (
             0.5 * (nx.max(1) - 1) as f64 * self.dx,
             0.5 * (ny.max(1) - 1) as f64 * self.dy,
@@ -226,7 +226,7 @@ impl FeatureShape {
                 amplitude,
                 wavelength,
             } => amplitude * (2.0 * PI * xi / wavelength).cos(),
-            FeatureShape::HeightMap(m) => -m.height(xi, eta),
+            FeatureShape::HeightMap(m) => m.depth(xi, eta),
         }
     }
 
@@ -248,17 +248,17 @@ impl FeatureShape {
             }
             FeatureShape::HeightMap(m) => {
                 // trapezoidal rule is exact for the bilinear interpolant
-                let (ny, nx) = m.heights.dim();
+                let (ny, nx) = m.depths.dim();
                 if nx < 2 || ny < 2 {
                     return Some(0.0);
                 }
                 let mut v = 0.0;
-                for ((j, i), h) in m.heights.indexed_iter() {
+                for ((j, i), h) in m.depths.indexed_iter() {
                     let wx = if i == 0 || i == nx - 1 { 0.5 } else { 1.0 };
                     let wy = if j == 0 || j == ny - 1 { 0.5 } else { 1.0 };
                     v += wx * wy * h;
                 }
-                Some(-v * m.dx * m.dy)
+                Some(v * m.dx * m.dy)
             }
             _ => None,
         }
@@ -286,7 +286,7 @@ impl Feature {
     }
 
     /// Checks the parameters: finite centre and depths, positive finite sizes (a pit's or a
-    /// dent's `length` may be `f64::INFINITY`), at least 2 x 2 finite heights on a height map,
+    /// dent's `length` may be `f64::INFINITY`), at least 2 x 2 finite depths on a height map,
     /// a pattern with at least one row and column, finite non-negative pitches (positive where
     /// there is more than one copy), and no pattern on waviness (it is not localized).
     pub fn check(&self) -> Result<(), String> {
@@ -344,14 +344,14 @@ impl Feature {
                         m.dx, m.dy
                     ));
                 }
-                let (ny, nx) = m.heights.dim();
+                let (ny, nx) = m.depths.dim();
                 if nx < 2 || ny < 2 {
                     return Err(format!(
                         "a height map needs at least 2 x 2 nodes, found {ny} rows x {nx} columns"
                     ));
                 }
-                if m.heights.iter().any(|h| !h.is_finite()) {
-                    return Err("height map has a non-finite height".into());
+                if m.depths.iter().any(|h| !h.is_finite()) {
+                    return Err("height map has a non-finite depth".into());
                 }
             }
         }
@@ -700,7 +700,7 @@ fn add_dent(g: &Grid, c: (f64, f64), w: f64, l: f64, d: f64, out: &mut [f64]) {
 
 /// Height map: exact (bilinear averaged over each cell/panel overlap at its centre).
 fn add_height_map(g: &Grid, c: (f64, f64), m: &HeightMap, out: &mut [f64]) {
-    let (ny_m, nx_m) = m.heights.dim();
+    let (ny_m, nx_m) = m.depths.dim();
     if nx_m < 2 || ny_m < 2 {
         return;
     }
@@ -745,7 +745,7 @@ fn add_height_map(g: &Grid, c: (f64, f64), m: &HeightMap, out: &mut [f64]) {
                 }
             }
             if sum != 0.0 {
-                out[g.idx(i, j)] -= sum;
+                out[g.idx(i, j)] += sum;
             }
         }
     }

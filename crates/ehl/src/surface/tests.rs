@@ -233,12 +233,12 @@ fn moving_a_dent_by_a_small_fraction_of_a_cell_changes_the_field_a_little() {
 #[test]
 fn negative_depth_flips_the_sign_exactly() {
     let hm = HeightMap {
-        heights: Array2::from_shape_fn((4, 6), |(j, i)| 1e-8 * (i as f64 - 0.3 * j as f64)),
+        depths: Array2::from_shape_fn((4, 6), |(j, i)| 1e-8 * (i as f64 - 0.3 * j as f64)),
         dx: 0.07e-3,
         dy: 0.09e-3,
     };
     let neg_hm = HeightMap {
-        heights: hm.heights.mapv(|h| -h),
+        depths: hm.depths.mapv(|h| -h),
         ..hm.clone()
     };
     let p = Pattern {
@@ -437,14 +437,14 @@ fn waviness_is_the_exact_cosine_average_and_tends_to_the_point_value() {
 
 fn map(ny: usize, nx: usize, f: impl Fn(usize, usize) -> f64) -> HeightMap {
     HeightMap {
-        heights: Array2::from_shape_fn((ny, nx), |(j, i)| f(j, i)),
+        depths: Array2::from_shape_fn((ny, nx), |(j, i)| f(j, i)),
         dx: 0.05e-3,
         dy: 0.08e-3,
     }
 }
 
 #[test]
-fn a_constant_height_map_samples_to_that_height_inside_the_map() {
+fn a_constant_height_map_samples_to_that_depth_inside_the_map() {
     let c = 3.0e-8;
     for g in grids() {
         let m = map(5, 7, |_, _| c);
@@ -461,18 +461,18 @@ fn a_constant_height_map_samples_to_that_height_inside_the_map() {
                 let (mx0, mx1) = (centre.0 - hx, centre.0 + hx);
                 let (my0, my1) = (centre.1 - hy, centre.1 + hy);
                 if x0 >= mx0 && x1 <= mx1 && y0 >= my0 && y1 <= my1 {
-                    // a height raises the surface: depth = -height
-                    assert!((v + c).abs() < 1e-14 * c, "({i}, {j}): {v}");
+                    // the map holds depths: a constant c samples to c
+                    assert!((v - c).abs() < 1e-14 * c, "({i}, {j}): {v}");
                     inside += 1;
                 } else if x1 <= mx0 || x0 >= mx1 || y1 <= my0 || y0 >= my1 {
                     assert_eq!(v, 0.0);
                 } else {
-                    assert!(v <= 0.0 && v >= -c * (1.0 + 1e-14));
+                    assert!(v >= 0.0 && v <= c * (1.0 + 1e-14));
                 }
             }
         }
         assert!(inside > 0 || g.dx > hx || g.dy > hy);
-        let exact = -c * 4.0 * hx * hy;
+        let exact = c * 4.0 * hx * hy;
         assert!((volume(&out, &g) / exact - 1.0).abs() < 1e-13);
     }
 }
@@ -499,7 +499,7 @@ fn height_map_is_exact_for_bilinear_data_and_conserves_volume() {
                 let (x0, x1) = (g.x_min + i as f64 * g.dx, g.x_min + (i + 1) as f64 * g.dx);
                 let (y0, y1) = (g.y_min + j as f64 * g.dy, g.y_min + (j + 1) as f64 * g.dy);
                 if x0 >= -4.0 * dx && x1 <= 4.0 * dx && y0 >= -2.5 * dy && y1 <= 2.5 * dy {
-                    let want = -bilinear(g.x(i), g.y(j));
+                    let want = bilinear(g.x(i), g.y(j));
                     assert!((out[g.idx(i, j)] - want).abs() < 1e-12 * 1e-8, "({i}, {j})");
                 }
             }
@@ -508,7 +508,7 @@ fn height_map_is_exact_for_bilinear_data_and_conserves_volume() {
             let f = Feature::new(FeatureShape::HeightMap(rough.clone()), (-0.03e-3, 0.02e-3));
             let exact = f.volume().unwrap();
             // the rough map's volume nearly cancels: compare with the volume of |height|
-            let scale = rough.heights.iter().map(|h| h.abs()).sum::<f64>() * rough.dx * rough.dy;
+            let scale = rough.depths.iter().map(|h| h.abs()).sum::<f64>() * rough.dx * rough.dy;
             let out = sample(&Surface::new(vec![f]), &g, shift);
             assert!((volume(&out, &g) - exact).abs() < 1e-14 * scale);
         }
