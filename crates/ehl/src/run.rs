@@ -183,7 +183,7 @@ fn solve_ehl(
     case: &Case,
     geometry: &Geometry,
     factory: &(dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
-    gap: &(dyn Fn(f64, f64) -> f64 + Sync),
+    gap: &dyn crate::geometry::GapSampler,
     load: f64,
     dry: crate::dry::DryResult,
     mut summary: Summary,

@@ -34,7 +34,7 @@ impl Deflection for Timed {
 fn run(
     label: &str,
     grid: Grid,
-    gap: &(dyn Fn(f64, f64) -> f64 + Sync),
+    gap: &dyn ehl::geometry::GapSampler,
     e_red: f64,
     load: f64,
     params: &DryParams,

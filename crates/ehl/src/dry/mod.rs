@@ -47,6 +47,7 @@
 
 use crate::elastic::Deflection;
 use crate::grid::Grid;
+use crate::geometry::GapSampler;
 
 /// Solver settings.
 #[derive(Debug, Clone)]
@@ -94,8 +95,9 @@ impl Default for DryParams {
 pub struct DryProblem<'a> {
     /// The finest grid, on which the result is returned.
     pub grid: Grid,
-    /// Undeformed separation g(x, y) (m) at a point; `f64::INFINITY` where there is no material.
-    pub gap: &'a (dyn Fn(f64, f64) -> f64 + Sync),
+    /// Undeformed separation g (m) on the cells of any grid; `f64::INFINITY` where there is no
+    /// material (a closure g(x, y) is sampled at the cell centres).
+    pub gap: &'a dyn GapSampler,
     /// Builds the elastic operator on any grid (called once per level).
     pub operator: &'a (dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
     /// Applied load F (N); for `ny == 1` line contact the load per unit length (N/m).
@@ -214,7 +216,7 @@ pub fn solve(problem: &DryProblem, params: &DryParams) -> DryResult {
     let nlev = grids.len();
     for (l, g) in grids.iter().enumerate() {
         let fine = l + 1 == nlev;
-        let gap = sample_gap(g, problem.gap);
+        let gap = problem.gap.sampled(g);
         if let Some(k) = gap.iter().position(|v| v.is_nan()) {
             return DryResult::failed(
                 &grid,
@@ -294,19 +296,6 @@ pub fn solve(problem: &DryProblem, params: &DryParams) -> DryResult {
         pressure = Some((*g, r.p));
     }
     unreachable!("the finest level returns")
-}
-
-/// The undeformed gap at the cell centres of `g`.
-fn sample_gap(g: &Grid, gap: &(dyn Fn(f64, f64) -> f64 + Sync)) -> Vec<f64> {
-    use rayon::prelude::*;
-    let mut out = vec![0.0; g.len()];
-    out.par_chunks_mut(g.nx).enumerate().for_each(|(j, row)| {
-        let y = g.y(j);
-        for (i, v) in row.iter_mut().enumerate() {
-            *v = gap(g.x(i), y);
-        }
-    });
-    out
 }
 
 /// Bilinear interpolation of a cell-centred field from `cg` to the cell centres of `fg` (both

@@ -28,6 +28,7 @@ mod system;
 use crate::case::Lubricant;
 use crate::elastic::Deflection;
 use crate::grid::Grid;
+use crate::geometry::GapSampler;
 use crate::reference::film;
 use crate::reynolds::gmres::{gmres, norm, GmresWork};
 use crate::reynolds::residual;
@@ -36,8 +37,8 @@ use system::{jacobian_product, Linear, Physics, Preconditioner, State, System};
 /// A steady isothermal EHL problem (SI units).
 pub struct EhlProblem<'a> {
     pub grid: Grid,
-    /// undeformed gap g(x, y) (m), f64::INFINITY where there is no material
-    pub gap: &'a (dyn Fn(f64, f64) -> f64 + Sync),
+    /// undeformed gap g (m) on the cells of any grid, f64::INFINITY where there is no material
+    pub gap: &'a dyn GapSampler,
     /// elastic operator factory (any grid): deflection (m) from cell pressures (Pa)
     pub operator: &'a (dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
     /// N, or N/m when grid.ny == 1 (infinite line)
@@ -384,8 +385,8 @@ fn is_point(p: &EhlProblem) -> bool {
     }
     let (b, r) = (p.hertz_half_width, p.reduced_radius);
     let ymid = 0.5 * (g.y_min + g.y_max());
-    let g0 = (p.gap)(0.0, ymid);
-    let ge = (p.gap)(0.0, g.y(0));
+    let g0 = p.gap.at(0.0, ymid);
+    let ge = p.gap.at(0.0, g.y(0));
     ge.is_finite() && g0.is_finite() && (ge - g0) * r / (b * b) > 0.5
 }
 

@@ -37,6 +37,7 @@ use crate::case::{DensityModel, Lubricant};
 use crate::elastic::operator::min_len;
 use crate::elastic::Deflection;
 use crate::grid::Grid;
+use crate::geometry::GapSampler;
 use crate::lubricant::{density, viscosity};
 use crate::reynolds::multigrid::{LineMultigrid, LineOperator};
 use crate::reynolds::residual::{self, Fields, ReynoldsGrid};
@@ -215,7 +216,7 @@ impl System {
     pub fn new(
         grid: Grid,
         op: Box<dyn Deflection>,
-        gap: &(dyn Fn(f64, f64) -> f64 + Sync),
+        gap: &dyn GapSampler,
         b: f64,
         r: f64,
         phys: Physics,
@@ -228,17 +229,14 @@ impl System {
         let khat = (0..=band)
             .map(|d| op.coefficient(d as isize, 0) * phys.ph * hscale)
             .collect();
-        let mut g = vec![0.0; n];
+        let mut g = gap.sampled(&grid);
         let mut active = vec![true; n];
-        for j in 0..grid.ny {
-            for i in 0..grid.nx {
-                let k = grid.idx(i, j);
-                let v = gap(grid.x(i), if grid.ny == 1 { 0.0 } else { grid.y(j) });
-                if v.is_finite() {
-                    g[k] = v * hscale;
-                } else {
-                    active[k] = false;
-                }
+        for (v, a) in g.iter_mut().zip(active.iter_mut()) {
+            if v.is_finite() {
+                *v *= hscale;
+            } else {
+                *v = 0.0;
+                *a = false;
             }
         }
         let rg = ReynoldsGrid {

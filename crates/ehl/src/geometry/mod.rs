@@ -502,5 +502,8 @@ fn golden(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
     best
 }
 
+mod sampler;
+pub use sampler::{GapSampler, GapWithFeatures};
+
 #[cfg(test)]
 mod tests;
