@@ -370,7 +370,15 @@ fn create_parent(dir: &Path, parent: &Path) -> Result<Vec<PathBuf>> {
                     format!("`{}` is a file, not a folder", p.display()),
                 ))
             }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => missing.push(p.to_path_buf()),
+            // "not a directory": an ancestor is a file, named when the walk reaches it
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::NotFound | std::io::ErrorKind::NotADirectory
+                ) =>
+            {
+                missing.push(p.to_path_buf())
+            }
             Err(e) => return Err(io_err_at(dir, p, "cannot use the folder", &e)),
         }
         match p.parent() {

@@ -568,8 +568,9 @@ fn draw_profile(
     let plot = chart.plotting_area().strip_coord_spec();
     let base = chart.plotting_area().get_base_pixel();
     for (x, y, on_right, label, color) in marks {
-        if !(x.is_finite() && y.is_finite()) {
-            continue;
+        let yr = if *on_right { &rrange } else { &lrange };
+        if !(x_range.contains(x) || *x == x_range.end) || !(yr.contains(y) || *y == yr.end) {
+            continue; // outside the frame (or not finite): plotters' pixels would overflow
         }
         let p = if *on_right {
             chart.borrow_secondary().backend_coord(&(*x, *y))
@@ -656,6 +657,12 @@ fn nonempty(lo: f64, hi: f64) -> Range<f64> {
     drawable_range(lo, hi)
 }
 
+/// A value a picture can place: finite and within ±1e300 (plotters' pixel arithmetic overflows
+/// beyond).
+fn usable(v: f64) -> bool {
+    v.is_finite() && v.abs() <= 1e300
+}
+
 /// [`drawable_range`] of a range.
 fn drawable(r: Range<f64>) -> Range<f64> {
     drawable_range(r.start, r.end)
@@ -670,7 +677,6 @@ fn drawable(r: Range<f64>) -> Range<f64> {
 /// * values below 1e-100 in magnitude count as zero (no picture shows such numbers);
 /// * a zero or too narrow width is widened by ±10 % of the magnitude, or to `0..1` at zero.
 pub fn drawable_range(lo: f64, hi: f64) -> Range<f64> {
-    let usable = |v: f64| v.is_finite() && v.abs() <= 1e300;
     let tiny = |v: f64| if v.abs() < 1e-100 { 0.0 } else { v };
     let (lo, hi) = match (usable(lo), usable(hi)) {
         (true, true) => (tiny(lo.min(hi)), tiny(lo.max(hi))),
@@ -1045,7 +1051,7 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
         };
         // no material on this line (the film is +inf all along it): the axis falls back to
         // drawable_range's default and the panel says so
-        let top = if top.is_finite() { top } else { hi };
+        let top = if hmin.is_finite() { top } else { f64::NAN };
         let (unit, scale) = film_unit(if top.is_finite() { top } else { 1e-6 });
         let xs = g.xs();
         if !hmin.is_finite() {
@@ -1321,7 +1327,7 @@ pub fn write_xy(
     let pts: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
-        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .filter(|&(x, y)| usable(x) && usable(y))
         .collect();
     let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
         (
@@ -1381,8 +1387,11 @@ pub fn write_xy(
                 .points
                 .iter()
                 .copied()
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .filter(|&(x, y)| usable(x) && usable(y))
                 .collect();
+            if p.is_empty() {
+                continue;
+            }
             p.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart
                 .draw_series(LineSeries::new(p.clone(), style))?
