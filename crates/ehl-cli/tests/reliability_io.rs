@@ -172,14 +172,15 @@ fn check_args() -> Vec<String> {
 fn closed_stdout_ends_quietly() {
     let w = Work::new(DRY);
     for args in [check_args(), vec!["--help".to_string()]] {
-        let mut child = ehl_cmd(&w, &[])
+        // a pipe whose reader is gone before ehl starts
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = ehl_cmd(&w, &[])
             .args(&args)
-            .stdout(Stdio::piped())
+            .stdout(writer)
             .stderr(Stdio::piped())
-            .spawn()
+            .output()
             .unwrap();
-        drop(child.stdout.take());
-        let o = child.wait_with_output().unwrap();
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(141), "{args:?}: {stderr}");
         assert!(stderr.is_empty(), "{args:?}: {stderr}");
@@ -190,13 +191,13 @@ fn closed_stdout_ends_quietly() {
 #[test]
 fn closed_stderr_does_not_panic() {
     let w = Work::new(DRY);
-    let mut child = ehl_cmd(&w, &["check", "missing.toml"])
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let status = ehl_cmd(&w, &["check", "missing.toml"])
         .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
+        .stderr(writer)
+        .status()
         .unwrap();
-    drop(child.stderr.take());
-    let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(1));
 }
 

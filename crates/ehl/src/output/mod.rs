@@ -233,7 +233,15 @@ pub fn write_marker(dir: &Path) -> Result<()> {
 pub fn check_replaceable(dir: &Path) -> Result<()> {
     let meta = match std::fs::metadata(dir) {
         Ok(m) => m,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        // missing, or under a file (the write names the file when it creates the parents)
+        Err(e)
+            if matches!(
+                e.kind(),
+                std::io::ErrorKind::NotFound | std::io::ErrorKind::NotADirectory
+            ) =>
+        {
+            return Ok(())
+        }
         Err(e) => return Err(io_err_at(dir, dir, "cannot read", &e)),
     };
     if !meta.is_dir() {
