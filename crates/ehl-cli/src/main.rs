@@ -26,6 +26,17 @@ Exit status:
      output folder is left as it was)
   141  standard output was closed by its reader (e.g. `ehl check case.toml | head -1`)";
 
+/// How output folders are written (after the exit codes in `run --help` and `sweep --help`).
+const OUTPUT_NOTES: &str = "\
+Output folders:
+  Written atomically: into .DIR.tmp-PID-N beside DIR, renamed to DIR when complete.
+  ehl replaces only a folder it wrote (it holds the marker file .ehl-output with the
+  version) or an empty one; any other DIR is refused before solving. One process per
+  DIR: the lock file .DIR.lock beside it; a second run is refused at once. Ctrl-C or
+  SIGTERM removes the temporary folder and the lock (exit 130); what a killed process
+  (SIGKILL) left is removed by the next write of DIR once that process is gone.
+  Case files: regular files of at most 16 MiB. Sweeps: at most 100000 points.";
+
 /// Dry contact and elastohydrodynamic lubrication (EHL) of finite rollers and balls.
 #[derive(Parser)]
 #[command(name = "ehl", version, about, after_help = EXIT_CODES)]
@@ -37,7 +48,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Solve a case and write its outputs (summary.json, fields, profiles, pictures).
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = format!("{EXIT_CODES}\n\n{OUTPUT_NOTES}"))]
     Run(RunArgs),
     /// Validate a case without solving; print the derived quantities (E', R, Hertz, W U G,
     /// Moes M L, film estimates, grid resolution).
@@ -45,7 +56,7 @@ enum Command {
     Check(CheckArgs),
     /// Solve a case over a grid of parameter values, in parallel; one sub-folder per point and
     /// sweep.csv with one row per finished point.
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = format!("{EXIT_CODES}\n\n{OUTPUT_NOTES}"))]
     Sweep(SweepArgs),
 }
 
@@ -85,9 +96,9 @@ struct CheckArgs {
 struct SweepArgs {
     #[command(flatten)]
     case: CaseArgs,
-    /// A varied key: `KEY=START:STOP:N` (N evenly spaced values, both ends included) or
-    /// `KEY=v1,v2,v3`. Repeatable: the points are all combinations, the first --vary
-    /// outermost.
+    /// A varied key: `KEY=START:STOP:N` (N evenly spaced values, both ends included; START and
+    /// STOP finite) or `KEY=v1,v2,v3`. Repeatable: the points are all combinations, the first
+    /// --vary outermost; at most 100000 points in all.
     #[arg(long, value_name = "KEY=SPEC", required = true, value_parser = sweep::Vary::parse)]
     vary: Vec<sweep::Vary>,
     /// Output folder [default: out/<case file stem>-sweep]. Never replaced as a whole; its point
