@@ -379,17 +379,19 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         "density" => " (kg/m³)",
         _ => " (-)",
     };
-    write_atomic(&out, |path| Ok(ehl::output::plot::write_xy(
-        path,
-        title,
-        &format!(
-            "{} converged points; the numbers are in sweep.csv",
-            rows.len()
-        ),
-        &format!("{}{unit}", first.key),
-        axis,
-        &series,
-    )?))
+    write_atomic(&out, |path| {
+        Ok(ehl::output::plot::write_xy(
+            path,
+            title,
+            &format!(
+                "{} converged points; the numbers are in sweep.csv",
+                rows.len()
+            ),
+            &format!("{}{unit}", first.key),
+            axis,
+            &series,
+        )?)
+    })
 }
 
 /// Writes `out` through a temporary sibling `.<name>.<pid>.tmp.<ext>` (the picture writer

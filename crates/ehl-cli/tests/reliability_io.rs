@@ -209,7 +209,12 @@ fn full_stdout_is_an_error() {
     for args in [check_args(), vec!["--version".to_string()]] {
         let o = ehl_cmd(&w, &[])
             .args(&args)
-            .stdout(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap())
+            .stdout(
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open("/dev/full")
+                    .unwrap(),
+            )
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&o.stderr);
@@ -233,7 +238,9 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
     let o = w.ehl(&["run", "mine/case.toml", "--out", "mine"]);
     assert_eq!(o.code, 1, "{}", o.stderr);
     assert!(
-        o.stderr.contains("mine") && o.stderr.contains("did not write") && o.stderr.contains("--out"),
+        o.stderr.contains("mine")
+            && o.stderr.contains("did not write")
+            && o.stderr.contains("--out"),
         "{}",
         o.stderr
     );
@@ -271,10 +278,7 @@ fn sweep_point_folders_are_checked_before_solving() {
     assert_eq!(o.code, 1, "{}", o.stderr);
     assert!(o.stderr.contains("p001_force=2000"), "{}", o.stderr);
     // nothing solved
-    assert_eq!(
-        names(&w.file("study")),
-        ["p001_force=2000", "readme.txt"]
-    );
+    assert_eq!(names(&w.file("study")), ["p001_force=2000", "readme.txt"]);
     assert_eq!(names(&w.file("study/p001_force=2000")), ["mine.txt"]);
 }
 
@@ -332,7 +336,12 @@ fn concurrent_shards_combine() {
     let (a, b) = (shard("0/2"), shard("1/2"));
     for c in [a, b] {
         let o = c.wait_with_output().unwrap();
-        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
     let csv = std::fs::read_to_string(w.file("study/sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5, "{csv}");
@@ -344,10 +353,17 @@ fn concurrent_shards_combine() {
 #[test]
 fn sweep_size_is_bounded_before_anything_is_made() {
     let w = Work::new(DRY);
-    let o = w.ehl(&["sweep", "case.toml", "--vary", "load.force=1:2:100000000000"]);
+    let o = w.ehl(&[
+        "sweep",
+        "case.toml",
+        "--vary",
+        "load.force=1:2:100000000000",
+    ]);
     assert_eq!(o.code, 2, "{}", o.stderr);
     assert!(
-        o.stderr.contains("--vary") && o.stderr.contains("load.force") && o.stderr.contains("100000"),
+        o.stderr.contains("--vary")
+            && o.stderr.contains("load.force")
+            && o.stderr.contains("100000"),
         "{}",
         o.stderr
     );
@@ -373,7 +389,11 @@ fn sweep_size_is_bounded_before_anything_is_made() {
 #[test]
 fn non_finite_range_ends_are_refused_by_name() {
     let w = Work::new(DRY);
-    for spec in ["load.force=nan:inf:3", "load.force=1000:inf:3", "load.force=-inf:1:2"] {
+    for spec in [
+        "load.force=nan:inf:3",
+        "load.force=1000:inf:3",
+        "load.force=-inf:1:2",
+    ] {
         let o = w.ehl(&["sweep", "case.toml", "--vary", spec]);
         assert_eq!(o.code, 2, "{spec}: {}", o.stderr);
         assert!(
@@ -391,7 +411,14 @@ fn out_under_a_file_says_so() {
     std::fs::write(w.file("plain"), "x").unwrap();
     for cmd in [
         vec!["run", "case.toml", "--out", "plain/results"],
-        vec!["sweep", "case.toml", "--vary", "load.force=1000,2000", "--out", "plain/study"],
+        vec![
+            "sweep",
+            "case.toml",
+            "--vary",
+            "load.force=1000,2000",
+            "--out",
+            "plain/study",
+        ],
     ] {
         let o = w.ehl(&cmd);
         assert_eq!(o.code, 1, "{}", o.stderr);
@@ -443,14 +470,19 @@ fn a_fifo_or_device_as_case_file_is_refused_without_blocking() {
             let o = run_limited(&w, ehl_cmd(&w, &cmd), Duration::from_secs(30));
             assert_eq!(o.code, 1, "{}", o.stderr);
             assert!(
-                o.stderr.starts_with("error: pipe.toml: cannot read the case file")
+                o.stderr
+                    .starts_with("error: pipe.toml: cannot read the case file")
                     && o.stderr.contains("FIFO"),
                 "{}",
                 o.stderr
             );
         }
     }
-    let o = run_limited(&w, ehl_cmd(&w, &["run", "/dev/zero"]), Duration::from_secs(30));
+    let o = run_limited(
+        &w,
+        ehl_cmd(&w, &["run", "/dev/zero"]),
+        Duration::from_secs(30),
+    );
     assert_eq!(o.code, 1, "{}", o.stderr);
     assert!(o.stderr.contains("device"), "{}", o.stderr);
     assert!(w.no_outputs());

@@ -338,8 +338,10 @@ pub fn clean_stale(parent: &Path, name: &str) {
         let Some((pid, n)) = rest.split_once('-') else {
             continue;
         };
-        let (Ok(pid), true) = (pid.parse::<u32>(), !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-        else {
+        let (Ok(pid), true) = (
+            pid.parse::<u32>(),
+            !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()),
+        ) else {
             continue;
         };
         if !pid_is_running(pid) {
@@ -700,7 +702,10 @@ mod tests {
         );
         let e = r.unwrap_err().to_string();
         assert!(e.contains("mine") && e.contains("did not write"), "{e}");
-        assert_eq!(std::fs::read_to_string(dir.join("notes.txt")).unwrap(), "precious");
+        assert_eq!(
+            std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
+            "precious"
+        );
         assert_eq!(std::fs::read_dir(root.path()).unwrap().count(), 1);
         let e = OutputLock::acquire(&dir).unwrap_err().to_string();
         assert!(e.contains("--out"), "{e}");
@@ -731,7 +736,9 @@ mod tests {
         // a pid above the kernel's limit (4194304) never runs
         let dead = root.path().join(".out.tmp-999999999-0");
         let dead_old = root.path().join(".out.old-999999999-3");
-        let alive = root.path().join(format!(".out.tmp-{}-77", std::process::id()));
+        let alive = root
+            .path()
+            .join(format!(".out.tmp-{}-77", std::process::id()));
         let other = root.path().join(".other.tmp-999999999-0");
         for d in [&dead, &dead_old, &alive, &other] {
             std::fs::create_dir(d).unwrap();
@@ -763,7 +770,10 @@ mod tests {
             &std::io::Error::from(std::io::ErrorKind::PermissionDenied),
         )
         .to_string();
-        assert_eq!(e, "writing /some/out: cannot write in `/some`: permission denied");
+        assert_eq!(
+            e,
+            "writing /some/out: cannot write in `/some`: permission denied"
+        );
     }
 
     #[test]

@@ -586,11 +586,19 @@ fn draw_profile(
     let (pw, ph) = plot.dim_in_pixel();
     let empty: Vec<&Axis> = std::iter::once(left)
         .chain(right)
-        .filter(|a| !a.curves.iter().flat_map(|c| &c.pts).any(|p| p.0.is_finite() && p.1.is_finite()))
+        .filter(|a| {
+            !a.curves
+                .iter()
+                .flat_map(|c| &c.pts)
+                .any(|p| p.0.is_finite() && p.1.is_finite())
+        })
         .collect();
     for (k, a) in empty.iter().enumerate() {
         plot.draw_text(
-            &format!("{}: no material on this line (nothing finite to draw)", a.label),
+            &format!(
+                "{}: no material on this line (nothing finite to draw)",
+                a.label
+            ),
             &text_style(18.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
             (pw as i32 / 2, ph as i32 / 3 + 28 * k as i32),
         )?;
@@ -1156,7 +1164,10 @@ mod tests {
                 let r = drawable_range(a, b);
                 assert!(r.start.is_finite() && r.end.is_finite(), "{a} {b} -> {r:?}");
                 let mag = r.start.abs().max(r.end.abs());
-                assert!(r.end - r.start >= 1e-9 * mag && r.end > r.start, "{a} {b} -> {r:?}");
+                assert!(
+                    r.end - r.start >= 1e-9 * mag && r.end > r.start,
+                    "{a} {b} -> {r:?}"
+                );
                 let coord: plotters::coord::types::RangedCoordf64 = r.clone().into();
                 let ticks = coord.key_points(10);
                 assert!(!ticks.is_empty() && ticks.len() <= 11, "{a} {b} -> {r:?}");
@@ -1210,7 +1221,12 @@ mod tests {
     fn degenerate_data_draws() {
         let (case, mut sol) = crate::output::synthetic::dry_roller();
         sol.fields.pressure.iter_mut().for_each(|p| *p = 0.0);
-        sol.fields.film.as_mut().unwrap().iter_mut().for_each(|h| *h = 1e-6);
+        sol.fields
+            .film
+            .as_mut()
+            .unwrap()
+            .iter_mut()
+            .for_each(|h| *h = 1e-6);
         let root = tempfile::tempdir().unwrap();
         let dir = root.path().to_path_buf();
         within_a_minute(move || {
