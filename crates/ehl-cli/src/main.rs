@@ -1,6 +1,7 @@
 //! The `ehl` command line: `run`, `check`, `sweep`. Thin: parsing, progress, exit codes; all the
 //! work is in the `ehl` library.
 
+mod io;
 mod progress;
 mod sweep;
 
@@ -20,7 +21,21 @@ Exit status:
      (the message names the file, the key and the reason)
   2  command-line usage error (unknown option, malformed --vary or --shard, ...)
   3  solved, but the solver did not converge: outputs are written and summary.json
-     has converged = false (sweep: at least one point did not converge)";
+     has converged = false (sweep: at least one point did not converge)
+  130  stopped by Ctrl-C or SIGTERM (temporary folders are removed; an existing
+     output folder is left as it was)
+  141  standard output was closed by its reader (e.g. `ehl check case.toml | head -1`)";
+
+/// How output folders are written (after the exit codes in `run --help` and `sweep --help`).
+const OUTPUT_NOTES: &str = "\
+Output folders:
+  Written atomically: into .DIR.tmp-PID-N beside DIR, renamed to DIR when complete.
+  ehl replaces only a folder it wrote (it holds the marker file .ehl-output with the
+  version) or an empty one; any other DIR is refused before solving. One process per
+  DIR: the lock file .DIR.lock beside it; a second run is refused at once. Ctrl-C or
+  SIGTERM removes the temporary folder and the lock (exit 130); what a killed process
+  (SIGKILL) left is removed by the next write of DIR once that process is gone.
+  Case files: regular files of at most 16 MiB. Sweeps: at most 100000 points.";
 
 /// Dry contact and elastohydrodynamic lubrication (EHL) of finite rollers and balls.
 #[derive(Parser)]
@@ -33,7 +48,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Solve a case and write its outputs (summary.json, fields, profiles, pictures).
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = format!("{EXIT_CODES}\n\n{OUTPUT_NOTES}"))]
     Run(RunArgs),
     /// Validate a case without solving; print the derived quantities (E', R, Hertz, W U G,
     /// Moes M L, film estimates, grid resolution).
@@ -41,7 +56,7 @@ enum Command {
     Check(CheckArgs),
     /// Solve a case over a grid of parameter values, in parallel; one sub-folder per point and
     /// sweep.csv with one row per finished point.
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = format!("{EXIT_CODES}\n\n{OUTPUT_NOTES}"))]
     Sweep(SweepArgs),
 }
 
@@ -61,7 +76,9 @@ struct RunArgs {
     #[command(flatten)]
     case: CaseArgs,
     /// Output folder [default: out/<case file stem>]. Replaced as a whole when every output is
-    /// written; nothing is left behind on an error.
+    /// written; nothing is left behind on an error. ehl replaces only a folder it wrote (it
+    /// holds the marker file .ehl-output) or an empty one, and refuses any other before
+    /// solving. One process at a time per folder (lock file .<DIR name>.lock beside it).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// No progress bar (it is shown only when stderr is a terminal anyway).
@@ -79,12 +96,13 @@ struct CheckArgs {
 struct SweepArgs {
     #[command(flatten)]
     case: CaseArgs,
-    /// A varied key: `KEY=START:STOP:N` (N evenly spaced values, both ends included) or
-    /// `KEY=v1,v2,v3`. Repeatable: the points are all combinations, the first --vary
-    /// outermost.
+    /// A varied key: `KEY=START:STOP:N` (N evenly spaced values, both ends included; START and
+    /// STOP finite) or `KEY=v1,v2,v3`. Repeatable: the points are all combinations, the first
+    /// --vary outermost; at most 100000 points in all.
     #[arg(long, value_name = "KEY=SPEC", required = true, value_parser = sweep::Vary::parse)]
     vary: Vec<sweep::Vary>,
-    /// Output folder [default: out/<case file stem>-sweep].
+    /// Output folder [default: out/<case file stem>-sweep]. Never replaced as a whole; its point
+    /// folders are (only those ehl wrote, see `ehl run --help`).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Points solved at the same time [default: the number of CPUs].
@@ -162,32 +180,67 @@ pub fn result_line(s: &Summary) -> String {
 fn run(args: RunArgs) -> Result<ExitCode> {
     let case = ehl::case::load_file(&args.case.case, &args.case.set)?;
     let dir = args.out.unwrap_or_else(|| default_out(&args.case.case, ""));
+    // before solving: refuse a folder ehl did not write, or one another process is writing
+    let lock = ehl::output::OutputLock::acquire(&dir)?;
     let bar = progress::Bar::new(args.quiet, 1000);
     let solution = ehl::run::solve(&case, &bar);
     bar.finish();
     let solution = solution?;
-    ehl::output::write_all(&dir, &case, &solution)?;
-    println!("{} -> {}", result_line(&solution.summary), dir.display());
+    ehl::output::write_locked(&lock, &case, &solution)?;
+    drop(lock);
+    io::out(&format!(
+        "{} -> {}",
+        result_line(&solution.summary),
+        dir.display()
+    ))?;
     if solution.summary.converged {
         Ok(ExitCode::SUCCESS)
     } else {
-        eprintln!(
+        io::err(&format!(
             "warning: the solver did not converge ({}); outputs written to {} with converged = false",
             solution.summary.termination,
             dir.display()
-        );
+        ));
         Ok(ExitCode::from(EXIT_NOT_CONVERGED))
     }
 }
 
 fn check(args: CheckArgs) -> Result<ExitCode> {
     let case = ehl::case::load_file(&args.case.case, &args.case.set)?;
-    println!("{}", ehl::run::check_text(&case));
+    io::out(&ehl::run::check_text(&case))?;
     Ok(ExitCode::SUCCESS)
 }
 
+/// Ctrl-C, SIGTERM, SIGHUP: remove the temporary folders and lock files being written, then
+/// exit 130. An output folder being swapped in is finished first (see
+/// `ehl::output::abort_cleanup`), so an old result is never lost.
+fn on_signal() {
+    let _ = ctrlc::set_handler(|| {
+        ehl::output::abort_cleanup();
+        io::err("ehl: interrupted; temporary files removed");
+        std::process::exit(130);
+    });
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // help and version go to stdout, usage errors to stderr; either may be closed
+            let to_stdout = !e.use_stderr();
+            return match e.print() {
+                Err(io) if to_stdout && io.kind() == std::io::ErrorKind::BrokenPipe => {
+                    ExitCode::from(io::EXIT_BROKEN_PIPE)
+                }
+                Err(io) if to_stdout => {
+                    io::err(&format!("error: writing to standard output: {io}"));
+                    ExitCode::FAILURE
+                }
+                _ => ExitCode::from(e.exit_code().clamp(0, 255) as u8),
+            };
+        }
+    };
+    on_signal();
     let result = match cli.command {
         Command::Run(a) => run(a),
         Command::Check(a) => check(a),
@@ -195,8 +248,9 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
+        Err(e) if e.downcast_ref::<io::Closed>().is_some() => ExitCode::from(io::EXIT_BROKEN_PIPE),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            io::err(&format!("error: {e:#}"));
             if e.downcast_ref::<Usage>().is_some() {
                 ExitCode::from(2)
             } else {

@@ -1,12 +1,18 @@
 //! `ehl sweep`: a case over the grid of all combinations of the `--vary` values, solved in
 //! parallel, one sub-folder per point and `sweep.csv` rebuilt from every finished point.
 
+use crate::io;
 use crate::progress::Bar;
 use crate::{default_out, SweepArgs, EXIT_NOT_CONVERGED};
 use anyhow::{Context, Result};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// The most points a sweep may have: per `--vary` (N of a range, or the values of a list) and in
+/// all (the product over every `--vary`). Generous for studies, and checked before anything is
+/// allocated per point.
+pub const MAX_POINTS: usize = 100_000;
 
 /// The summary figures written to sweep.csv after the varied keys (empty where absent).
 pub const FIGURES: &[&str] = &[
@@ -79,9 +85,16 @@ impl Vary {
         let parts: Vec<&str> = spec.split(':').collect();
         let values = if parts.len() == 3 && !spec.contains(['"', '{', '[']) {
             let num = |t: &str, what: &str| -> std::result::Result<f64, String> {
-                t.trim()
+                let v = t
+                    .trim()
                     .parse::<f64>()
-                    .map_err(|_| format!("{what} `{t}` in `{key}={spec}` is not a number"))
+                    .map_err(|_| format!("{what} `{t}` in `{key}={spec}` is not a number"))?;
+                if !v.is_finite() {
+                    return Err(format!(
+                        "{what} `{t}` in `{key}={spec}` is not a finite number"
+                    ));
+                }
+                Ok(v)
             };
             let (a, b) = (num(parts[0], "START")?, num(parts[1], "STOP")?);
             let n: usize = parts[2].trim().parse().map_err(|_| {
@@ -93,21 +106,33 @@ impl Vary {
             if n == 0 {
                 return Err(format!("N in `{key}={spec}` must be at least 1"));
             }
+            if n > MAX_POINTS {
+                return Err(format!(
+                    "N = {n} in `{key}={spec}` is more than the {MAX_POINTS} points a sweep may have"
+                ));
+            }
             if n == 1 && a != b {
                 return Err(format!(
                     "`{key}={spec}` asks for 1 point between two different values; give N >= 2 or one value"
                 ));
             }
-            (0..n)
+            let values: Vec<f64> = (0..n)
                 .map(|i| {
-                    let v = if i + 1 == n {
+                    if i + 1 == n {
                         b
                     } else {
-                        a + (b - a) * i as f64 / (n - 1).max(1) as f64
-                    };
-                    number_text(v)
+                        // a + (b - a) t, written so that the difference cannot overflow
+                        let t = i as f64 / (n - 1).max(1) as f64;
+                        a * (1.0 - t) + b * t
+                    }
                 })
-                .collect()
+                .collect();
+            if values.iter().any(|v| !v.is_finite()) {
+                return Err(format!(
+                    "`{key}={spec}` gives a value that is not a finite number"
+                ));
+            }
+            values.into_iter().map(number_text).collect()
         } else if parts.len() > 1 && !spec.contains(['"', '{', '[']) {
             return Err(format!(
                 "`{key}={spec}`: a range is written START:STOP:N (three parts), e.g. 0:0.1:11"
@@ -116,6 +141,12 @@ impl Vary {
             let vals = split_top_level(spec);
             if vals.iter().any(|v| v.is_empty()) {
                 return Err(format!("`{key}={spec}` has an empty value in its list"));
+            }
+            if vals.len() > MAX_POINTS {
+                return Err(format!(
+                    "`{key}=...` lists {} values, more than the {MAX_POINTS} points a sweep may have",
+                    vals.len()
+                ));
             }
             vals
         };
@@ -266,10 +297,10 @@ fn write_csv(dir: &Path, varies: &[Vary], pts: &[Point]) -> Result<usize> {
         text.push('\n');
         rows += 1;
     }
-    let tmp = dir.join(format!(".sweep.csv.{}.tmp", std::process::id()));
     let out = dir.join("sweep.csv");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &out).with_context(|| format!("writing {}", out.display()))?;
+    write_atomic(&out, |tmp| {
+        std::fs::write(tmp, &text).with_context(|| format!("writing {}", out.display()))
+    })?;
     Ok(rows)
 }
 
@@ -332,7 +363,7 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
     if series.is_empty() {
         return Ok(());
     }
-    let path = dir.join("sweep.png");
+    let out = dir.join("sweep.png");
     // the SI unit of the varied key, from its last segment (the case file is all SI)
     let last = first.key.rsplit('.').next().unwrap_or("");
     let unit = match last {
@@ -348,18 +379,81 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         "density" => " (kg/m³)",
         _ => " (-)",
     };
-    ehl::output::plot::write_xy(
-        &path,
-        title,
-        &format!(
-            "{} converged points; the numbers are in sweep.csv",
-            rows.len()
-        ),
-        &format!("{}{unit}", first.key),
-        axis,
-        &series,
-    )?;
-    Ok(())
+    write_atomic(&out, |path| {
+        Ok(ehl::output::plot::write_xy(
+            path,
+            title,
+            &format!(
+                "{} converged points; the numbers are in sweep.csv",
+                rows.len()
+            ),
+            &format!("{}{unit}", first.key),
+            axis,
+            &series,
+        )?)
+    })
+}
+
+/// Writes `out` through a temporary sibling `.<name>.<pid>.tmp.<ext>` (the picture writer
+/// needs the extension), renamed over `out` when complete, so that a reader never sees half a
+/// file. A Ctrl-C removes the temporary file; a killed process's is removed by the next
+/// [`SummaryLock`].
+fn write_atomic(out: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let name = out.file_name().unwrap_or_default().to_string_lossy();
+    let ext = out.extension().unwrap_or_default().to_string_lossy();
+    let tmp = out.with_file_name(format!(".{name}.{}.tmp.{ext}", std::process::id()));
+    ehl::output::register_temp(&tmp);
+    let r = fill(&tmp).and_then(|()| {
+        std::fs::rename(&tmp, out).with_context(|| format!("writing {}", out.display()))
+    });
+    if r.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    ehl::output::unregister_temp(&tmp);
+    r
+}
+
+/// The lock on a sweep folder's summary files (sweep.csv, sweep.png): `.sweep.lock` in the
+/// folder, waited for (a rebuild takes a moment), so that concurrent shards rebuild one after
+/// the other. The file stays (it is ehl's own folder).
+struct SummaryLock {
+    _file: std::fs::File,
+}
+
+impl SummaryLock {
+    fn acquire(dir: &Path) -> Result<SummaryLock> {
+        let path = dir.join(".sweep.lock");
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .with_context(|| format!("writing {}", path.display()))?;
+        match file.lock() {
+            Ok(()) => {}
+            // a file system without locks: go on unlocked
+            Err(e) if e.kind() == std::io::ErrorKind::Unsupported => {}
+            Err(e) => {
+                return Err(anyhow::Error::new(e).context(format!("locking {}", path.display())))
+            }
+        }
+        // temporary files of shards that were killed
+        if let Ok(entries) = std::fs::read_dir(dir) {
+            for e in entries.flatten() {
+                let name = e.file_name().to_string_lossy().into_owned();
+                let pid = [".sweep.csv.", ".sweep.png."]
+                    .iter()
+                    .find_map(|p| name.strip_prefix(p))
+                    .and_then(|r| r.split_once(".tmp."))
+                    .and_then(|(pid, _)| pid.parse::<u32>().ok());
+                if pid.is_some_and(|p| !ehl::output::pid_is_running(p)) {
+                    let _ = std::fs::remove_file(e.path());
+                }
+            }
+        }
+        Ok(SummaryLock { _file: file })
+    }
 }
 
 enum Outcome {
@@ -371,10 +465,7 @@ enum Outcome {
 pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
     let case_path = &args.case.case;
     let file = case_path.display().to_string();
-    let text = std::fs::read_to_string(case_path).map_err(|e| ehl::Error::CaseFile {
-        file: file.clone(),
-        message: format!("cannot read the case file: {e}"),
-    })?;
+    let text = ehl::case::read_case_text(case_path)?;
     for (i, v) in args.vary.iter().enumerate() {
         if args.vary[..i].iter().any(|w| w.key == v.key) {
             return Err(crate::Usage(format!(
@@ -383,6 +474,25 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
             ))
             .into());
         }
+    }
+    // the size first: nothing per point is made before the total is known to be bounded
+    let total = args
+        .vary
+        .iter()
+        .try_fold(1usize, |acc, v| acc.checked_mul(v.values.len()))
+        .filter(|&n| n <= MAX_POINTS);
+    if total.is_none() {
+        let sizes: Vec<String> = args
+            .vary
+            .iter()
+            .map(|v| format!("{} ({})", v.values.len(), v.key))
+            .collect();
+        return Err(crate::Usage(format!(
+            "--vary: the sweep would have {} points, more than the {MAX_POINTS} a sweep may \
+             have; vary fewer values, or split the study into several sweeps",
+            sizes.join(" x ")
+        ))
+        .into());
     }
     let pts = points(&args.vary);
 
@@ -407,7 +517,14 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
         .unwrap_or_else(|| default_out(case_path, "-sweep"));
     let shard = args.shard.unwrap_or(Shard { k: 0, n: 1 });
     let mine: Vec<usize> = (0..pts.len()).filter(|i| i % shard.n == shard.k).collect();
-    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    // before solving: every point folder to write must be ehl's to replace
+    for &i in &mine {
+        let folder = dir.join(&pts[i].folder);
+        if !folder.join("summary.json").is_file() {
+            ehl::output::check_replaceable(&folder)?;
+        }
+    }
+    ehl::output::create_folder(&dir)?;
 
     let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
         std::thread::available_parallelism()
@@ -427,8 +544,10 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
                 let outcome = if folder.join("summary.json").is_file() {
                     Outcome::Skipped
                 } else {
-                    let solved = ehl::run::solve(&cases[i], &ehl::run::Silent).and_then(|s| {
-                        ehl::output::write_all(&folder, &cases[i], &s)?;
+                    // one writer per point folder (shards of one sweep may run at once)
+                    let solved = ehl::output::OutputLock::acquire(&folder).and_then(|lock| {
+                        let s = ehl::run::solve(&cases[i], &ehl::run::Silent)?;
+                        ehl::output::write_locked(&lock, &cases[i], &s)?;
                         Ok(s.summary.converged)
                     });
                     match solved {
@@ -443,9 +562,15 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
     });
     bar.finish();
 
-    let rows = write_csv(&dir, &args.vary, &pts)?;
     let title = cases.first().map(|c| c.title.clone()).unwrap_or_default();
-    write_plot(&dir, &title, &args.vary, &pts)?;
+    let rows = {
+        // shards rebuild sweep.csv and sweep.png one at a time, each from every point finished
+        // before it, so that the last rebuild holds every point
+        let _lock = SummaryLock::acquire(&dir)?;
+        let rows = write_csv(&dir, &args.vary, &pts)?;
+        write_plot(&dir, &title, &args.vary, &pts)?;
+        rows
+    };
     let solved = outcomes
         .iter()
         .filter(|o| matches!(o, Outcome::Solved { .. }))
@@ -466,27 +591,27 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
         })
         .collect();
     for m in &failed {
-        eprintln!("error: {m}");
+        io::err(&format!("error: {m}"));
     }
     let shard_note = if shard.n > 1 {
         format!(" (shard {}/{})", shard.k, shard.n)
     } else {
         String::new()
     };
-    println!(
+    io::out(&format!(
         "sweep{shard_note}: {} points here: {solved} solved ({not_converged} not converged), {skipped} already done, {} failed; sweep.csv holds {rows} of {} points -> {}",
         mine.len(),
         failed.len(),
         pts.len(),
         dir.join("sweep.csv").display()
-    );
+    ))?;
     if !failed.is_empty() {
         anyhow::bail!("{} sweep point(s) failed", failed.len());
     }
     if not_converged > 0 {
-        eprintln!(
+        io::err(&format!(
             "warning: {not_converged} point(s) did not converge (converged = false in sweep.csv)"
-        );
+        ));
         return Ok(ExitCode::from(EXIT_NOT_CONVERGED));
     }
     Ok(ExitCode::SUCCESS)

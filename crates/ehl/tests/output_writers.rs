@@ -25,12 +25,15 @@ fn writes_every_file_and_replaces_an_old_folder() {
     let root = tempfile::tempdir().unwrap();
     let dir = root.path().join("a/b/out");
     std::fs::create_dir_all(&dir).unwrap();
+    // an earlier ehl output (it holds the marker), with a file the new outputs do not have
+    ehl::output::write_marker(&dir).unwrap();
     std::fs::write(dir.join("stale.txt"), "from an earlier run").unwrap();
     let (case, sol) = synthetic::ehl_ball(false);
     write_all(&dir, &case, &sol).unwrap();
     assert_eq!(
         entries(&dir),
         [
+            ".ehl-output",
             "axial.csv",
             "centerline.csv",
             "centerline.png",

@@ -79,14 +79,84 @@ use std::path::Path;
 use toml::Table;
 
 /// Reads, overrides and validates a case file. `overrides` are `"dotted.key=value"` strings
-/// (the CLI's `--set`). Errors name the file as given in `path`.
+/// (the CLI's `--set`). Errors name the file as given in `path`. The file is read with
+/// [`read_case_text`].
 pub fn load_file(path: &Path, overrides: &[String]) -> Result<Case> {
+    let text = read_case_text(path)?;
+    parse_str(&text, &path.display().to_string(), overrides)
+}
+
+/// The largest case file read: 16 MiB (a case file is a few hundred bytes; this only keeps a
+/// wrong path, e.g. a disk image, from filling the memory).
+pub const MAX_CASE_FILE_BYTES: u64 = 16 * 1024 * 1024;
+
+/// Reads the text of a case file: a regular file (or a link to one) of at most
+/// [`MAX_CASE_FILE_BYTES`], in UTF-8. A folder, FIFO, device or socket is refused from its
+/// metadata before it is opened, so that reading never blocks (a FIFO would wait for a writer
+/// forever). Errors are [`Error::CaseFile`] naming the file as given: "cannot read the case
+/// file: ...".
+pub fn read_case_text(path: &Path) -> Result<String> {
+    use std::io::Read;
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::CaseFile {
+    let err = |message: String| Error::CaseFile {
         file: file.clone(),
-        message: format!("cannot read the case file: {e}"),
-    })?;
-    parse_str(&text, &file, overrides)
+        message: format!("cannot read the case file: {message}"),
+    };
+    let kind = |m: &std::fs::Metadata| -> Option<&'static str> {
+        let t = m.file_type();
+        if t.is_file() {
+            return None;
+        }
+        if t.is_dir() {
+            return Some("it is a folder, not a file");
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            if t.is_fifo() {
+                return Some("it is a FIFO (named pipe), not a regular file");
+            }
+            if t.is_block_device() || t.is_char_device() {
+                return Some("it is a device, not a regular file");
+            }
+            if t.is_socket() {
+                return Some("it is a socket, not a regular file");
+            }
+        }
+        Some("it is not a regular file")
+    };
+    let too_big = |n: u64| {
+        err(format!(
+            "it is {n} bytes, more than the {} MiB a case file may have",
+            MAX_CASE_FILE_BYTES / (1024 * 1024)
+        ))
+    };
+    let meta = std::fs::metadata(path).map_err(|e| err(e.to_string()))?;
+    if let Some(why) = kind(&meta) {
+        return Err(err(why.into()));
+    }
+    if meta.len() > MAX_CASE_FILE_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let f = std::fs::File::open(path).map_err(|e| err(e.to_string()))?;
+    // the path may have been replaced between the two looks: check what was opened
+    let meta = f.metadata().map_err(|e| err(e.to_string()))?;
+    if let Some(why) = kind(&meta) {
+        return Err(err(why.into()));
+    }
+    let mut bytes = Vec::new();
+    f.take(MAX_CASE_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| err(e.to_string()))?;
+    if bytes.len() as u64 > MAX_CASE_FILE_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        err(format!(
+            "it is not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
 }
 
 /// Parses case text (`file` names it in errors), applies `overrides`, validates.

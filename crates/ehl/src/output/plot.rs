@@ -267,8 +267,8 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     let area = titled(root, spec.title, &spec.lines)?;
     let (main, bar_area) = area.split_horizontally(WIDTH - 150);
     let mm = 1e3;
-    let xr = g.x_min * mm..g.x_max() * mm;
-    let yr = g.y_min * mm..g.y_max() * mm;
+    let xr = drawable(g.x_min * mm..g.x_max() * mm);
+    let yr = drawable(g.y_min * mm..g.y_max() * mm);
     let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
     let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
     let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
@@ -311,7 +311,7 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     let plot = chart.plotting_area().strip_coord_spec();
     let (w, h) = plot.dim_in_pixel();
     let sampler = Sampler { g, v: spec.values };
-    let (lo, hi) = (spec.range.start, spec.range.end);
+    let Range { start: lo, end: hi } = drawable(spec.range.clone());
     for py in 0..h {
         let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
         for px in 0..w {
@@ -386,7 +386,8 @@ fn draw_colorbar(
     spec: &MapSpec,
     vpad: i32,
 ) -> DrawResult<()> {
-    let span = spec.range.end - spec.range.start;
+    let range = drawable(spec.range.clone());
+    let span = range.end - range.start;
     let fmt = move |v: &f64| fmt_tick(*v, span);
     let mut bar = ChartBuilder::on(area)
         .margin_top(10 + vpad)
@@ -395,7 +396,7 @@ fn draw_colorbar(
         .margin_right(10)
         .x_label_area_size(62)
         .right_y_label_area_size(80)
-        .build_cartesian_2d(0.0..1.0, spec.range.clone())?;
+        .build_cartesian_2d(0.0..1.0, range)?;
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
@@ -491,11 +492,13 @@ fn draw_profile(
     marks: &[(f64, f64, bool, String, RGBColor)],
 ) -> DrawResult<()> {
     let area = titled(root, title, lines)?;
+    let x_range = drawable(x_range);
+    let lrange = drawable(left.range.clone());
     let xspan = x_range.end - x_range.start;
-    let lspan = left.range.end - left.range.start;
+    let lspan = lrange.end - lrange.start;
     let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
     let l_fmt = move |v: &f64| fmt_tick(*v, lspan);
-    let rrange = right.map(|r| r.range.clone()).unwrap_or(0.0..1.0);
+    let rrange = drawable(right.map(|r| r.range.clone()).unwrap_or(0.0..1.0));
     let rspan = rrange.end - rrange.start;
     let r_fmt = move |v: &f64| fmt_tick(*v, rspan);
     let mut chart = ChartBuilder::on(&area)
@@ -506,7 +509,7 @@ fn draw_profile(
         .x_label_area_size(62)
         .y_label_area_size(86)
         .right_y_label_area_size(if right.is_some() { 86 } else { 0 })
-        .build_cartesian_2d(x_range.clone(), left.range.clone())?
+        .build_cartesian_2d(x_range.clone(), lrange.clone())?
         .set_secondary_coord(x_range.clone(), rrange.clone());
     line_chart_mesh(&mut chart.configure_mesh())
         .x_label_formatter(&x_fmt)
@@ -527,7 +530,7 @@ fn draw_profile(
     for c in &left.curves {
         let style = ShapeStyle::from(&c.color).stroke_width(if c.dashed { 2 } else { 3 });
         let mut first = true;
-        for piece in clip(&c.pts, &left.range) {
+        for piece in clip(&c.pts, &lrange) {
             let anno = if c.dashed {
                 chart.draw_series(DashedLineSeries::new(piece, 10, 7, style))?
             } else {
@@ -552,7 +555,7 @@ fn draw_profile(
         for c in &r.curves {
             let style = ShapeStyle::from(&c.color).stroke_width(if c.dashed { 2 } else { 3 });
             let mut first = true;
-            for piece in clip(&c.pts, &r.range) {
+            for piece in clip(&c.pts, &rrange) {
                 let anno = chart.draw_secondary_series(LineSeries::new(piece, style))?;
                 if first {
                     anno.label(c.label.as_str())
@@ -565,6 +568,10 @@ fn draw_profile(
     let plot = chart.plotting_area().strip_coord_spec();
     let base = chart.plotting_area().get_base_pixel();
     for (x, y, on_right, label, color) in marks {
+        let yr = if *on_right { &rrange } else { &lrange };
+        if !(x_range.contains(x) || *x == x_range.end) || !(yr.contains(y) || *y == yr.end) {
+            continue; // outside the frame (or not finite): plotters' pixels would overflow
+        }
         let p = if *on_right {
             chart.borrow_secondary().backend_coord(&(*x, *y))
         } else {
@@ -574,6 +581,27 @@ fn draw_profile(
         plot.draw(&Circle::new(q, 6, ShapeStyle::from(color).filled()))?;
         plot.draw(&Circle::new(q, 6, ShapeStyle::from(&BLACK).stroke_width(1)))?;
         boxed_label(&plot, label, q)?;
+    }
+    // an axis with nothing finite to draw says so instead of staying silently empty
+    let (pw, ph) = plot.dim_in_pixel();
+    let empty: Vec<&Axis> = std::iter::once(left)
+        .chain(right)
+        .filter(|a| {
+            !a.curves
+                .iter()
+                .flat_map(|c| &c.pts)
+                .any(|p| p.0.is_finite() && p.1.is_finite())
+        })
+        .collect();
+    for (k, a) in empty.iter().enumerate() {
+        plot.draw_text(
+            &format!(
+                "{}: no material on this line (nothing finite to draw)",
+                a.label
+            ),
+            &text_style(18.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
+            (pw as i32 / 2, ph as i32 / 3 + 28 * k as i32),
+        )?;
     }
     // the legend last, so that nothing covers it
     chart
@@ -632,14 +660,47 @@ fn arg_min(v: &[f64]) -> (f64, usize) {
         )
 }
 
-/// A non-empty colour or axis range from `lo`, `hi`.
+/// A colour or axis range from `lo` to `hi`, made drawable by [`drawable_range`].
 fn nonempty(lo: f64, hi: f64) -> Range<f64> {
-    if hi > lo {
-        lo..hi
-    } else {
-        let d = if lo.abs() > 0.0 { 0.1 * lo.abs() } else { 1.0 };
-        lo - d..hi + d
+    drawable_range(lo, hi)
+}
+
+/// A value a picture can place: finite and within ±1e300 (plotters' pixel arithmetic overflows
+/// beyond).
+fn usable(v: f64) -> bool {
+    v.is_finite() && v.abs() <= 1e300
+}
+
+/// [`drawable_range`] of a range.
+fn drawable(r: Range<f64>) -> Range<f64> {
+    drawable_range(r.start, r.end)
+}
+
+/// The one guard of every axis and colour range of the pictures: plotters loops forever on an
+/// infinite or NaN range, and on one too narrow for its values to step through (`1..1+1e-16`).
+/// Returns a finite range with `end > start` and a width of at least 1e-9 of its magnitude:
+///
+/// * non-finite (or beyond ±1e300) ends are dropped: one finite end is kept, none gives `0..1`;
+/// * ends in the wrong order are swapped;
+/// * values below 1e-100 in magnitude count as zero (no picture shows such numbers);
+/// * a zero or too narrow width is widened by ±10 % of the magnitude, or to `0..1` at zero.
+pub fn drawable_range(lo: f64, hi: f64) -> Range<f64> {
+    let tiny = |v: f64| if v.abs() < 1e-100 { 0.0 } else { v };
+    let (lo, hi) = match (usable(lo), usable(hi)) {
+        (true, true) => (tiny(lo.min(hi)), tiny(lo.max(hi))),
+        (true, false) => (tiny(lo), tiny(lo)),
+        (false, true) => (tiny(hi), tiny(hi)),
+        (false, false) => (0.0, 0.0),
+    };
+    let mag = lo.abs().max(hi.abs());
+    if hi - lo >= 1e-9 * mag && hi > lo {
+        return lo..hi;
     }
+    if mag == 0.0 {
+        return 0.0..1.0;
+    }
+    let d = 0.1 * mag;
+    lo - d..hi + d
 }
 
 fn pmax_line(solution: &Solution, case: &Case) -> String {
@@ -842,7 +903,7 @@ fn film_range(solution: &Solution, film: &[f64]) -> (f64, f64, bool) {
         // dry (zero gap under load) or flat film: the median gap of the domain
         let mut v: Vec<f64> = film.iter().copied().filter(|h| h.is_finite()).collect();
         v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
+        v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
     };
     if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         hi = top;
@@ -996,9 +1057,14 @@ pub fn write_centerline(path: &Path, case: &Case, solution: &Solution) -> Result
         } else {
             2.5 * hi
         };
-        let (unit, scale) = film_unit(top);
+        // no material on this line (the film is +inf all along it): the axis falls back to
+        // drawable_range's default and the panel says so
+        let top = if hmin.is_finite() { top } else { f64::NAN };
+        let (unit, scale) = film_unit(if top.is_finite() { top } else { 1e-6 });
         let xs = g.xs();
-        if !is_dry(case) {
+        if !hmin.is_finite() {
+            lines[0] += &format!(";  no material on this line (no {word})");
+        } else if !is_dry(case) {
             marks.push((
                 xs[k] * 1e3,
                 hmin * scale,
@@ -1067,6 +1133,127 @@ mod tests {
         assert_eq!(fmt_sig(1234.6, 3), "1235");
         assert_eq!(film_unit(0.5e-6).0, "nm");
         assert_eq!(film_unit(2e-6).0, "µm");
+    }
+
+    /// Every range a picture can meet comes out finite, ordered and wide enough for plotters to
+    /// step through (its tick search loops forever otherwise).
+    #[test]
+    fn every_range_is_drawable() {
+        let nasty = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1.0 + 1e-16,
+            1e-300,
+            -1e-300,
+            1e300,
+            -1e300,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            2.5e-9,
+            1e6,
+            1e6 + 1e-9,
+        ];
+        for &a in &nasty {
+            for &b in &nasty {
+                let r = drawable_range(a, b);
+                assert!(r.start.is_finite() && r.end.is_finite(), "{a} {b} -> {r:?}");
+                let mag = r.start.abs().max(r.end.abs());
+                assert!(
+                    r.end - r.start >= 1e-9 * mag && r.end > r.start,
+                    "{a} {b} -> {r:?}"
+                );
+                let coord: plotters::coord::types::RangedCoordf64 = r.clone().into();
+                let ticks = coord.key_points(10);
+                assert!(!ticks.is_empty() && ticks.len() <= 11, "{a} {b} -> {r:?}");
+            }
+        }
+        // ordinary ranges are kept as they are
+        assert_eq!(drawable_range(0.0, 2.5), 0.0..2.5);
+        assert_eq!(drawable_range(0.0, f64::NEG_INFINITY), 0.0..1.0);
+        assert_eq!(drawable_range(2.0, 2.0), 1.8..2.2);
+    }
+
+    /// Runs `f` on a thread; fails (instead of hanging the suite) if it takes over a minute.
+    fn within_a_minute(f: impl FnOnce() -> Result<()> + Send + 'static) {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send(f().map_err(|e| e.to_string()));
+        });
+        match rx.recv_timeout(std::time::Duration::from_secs(60)) {
+            Ok(r) => r.unwrap(),
+            Err(_) => panic!("drawing hung"),
+        }
+    }
+
+    /// The centre row has no material (film +inf all along it): centerline.png is drawn with
+    /// a default film axis and says so (it looped inside plotters before).
+    #[test]
+    fn centerline_without_material_on_the_centre_row() {
+        for dry in [true, false] {
+            let (case, mut sol) = if dry {
+                crate::output::synthetic::dry_roller()
+            } else {
+                crate::output::synthetic::ehl_ball(false)
+            };
+            let j = crate::output::centre_row(&sol);
+            let nx = sol.grid.nx;
+            for v in &mut sol.fields.film.as_mut().unwrap()[j * nx..(j + 1) * nx] {
+                *v = f64::INFINITY;
+            }
+            for v in &mut sol.fields.pressure[j * nx..(j + 1) * nx] {
+                *v = 0.0;
+            }
+            let root = tempfile::tempdir().unwrap();
+            let path = root.path().join("centerline.png");
+            within_a_minute(move || write_centerline(&path, &case, &sol));
+        }
+    }
+
+    /// Maps and profiles of fields that are zero or constant everywhere, and x-y charts of
+    /// nothing, one point, equal points or huge values, all draw.
+    #[test]
+    fn degenerate_data_draws() {
+        let (case, mut sol) = crate::output::synthetic::dry_roller();
+        sol.fields.pressure.iter_mut().for_each(|p| *p = 0.0);
+        sol.fields
+            .film
+            .as_mut()
+            .unwrap()
+            .iter_mut()
+            .for_each(|h| *h = 1e-6);
+        let root = tempfile::tempdir().unwrap();
+        let dir = root.path().to_path_buf();
+        within_a_minute(move || {
+            write_pressure(&dir.join("p.png"), &case, &sol)?;
+            write_film(&dir.join("f.png"), &case, &sol)?;
+            write_centerline(&dir.join("c.png"), &case, &sol)?;
+            let xy = |pts: Vec<(f64, f64)>| {
+                vec![Series {
+                    label: "s".into(),
+                    points: pts,
+                }]
+            };
+            for (k, pts) in [
+                vec![],
+                vec![(f64::NAN, 1.0), (1.0, f64::INFINITY)],
+                vec![(1.0, 2.0)],
+                vec![(1.0, 2.0), (1.0, 2.0)],
+                vec![(1.0, 1.0), (1.0 + 1e-16, 1.0 + 1e-16)],
+                vec![(-1e308, 1e308), (1e308, -1e308)],
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                write_xy(&dir.join(format!("xy{k}.png")), "t", "", "x", "y", &xy(pts))?;
+            }
+            Ok(())
+        });
     }
 
     #[test]
@@ -1143,7 +1330,8 @@ fn legend_corner(pts: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> SeriesLa
 }
 
 /// A plain x-y chart with markers and a legend, for parameter studies (`sweep.png`, the
-/// validation pages): `x_label` and `y_label` carry the units. Non-finite points are skipped.
+/// validation pages): `x_label` and `y_label` carry the units. Non-finite points are skipped;
+/// with no finite point at all the chart is an empty panel that says so (default axes 0..1).
 pub fn write_xy(
     path: &Path,
     title: &str,
@@ -1155,11 +1343,8 @@ pub fn write_xy(
     let pts: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
-        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .filter(|&(x, y)| usable(x) && usable(y))
         .collect();
-    if pts.is_empty() {
-        return Err(draw_err(path, "no finite point to draw"));
-    }
     let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
         (
             f64::INFINITY,
@@ -1170,9 +1355,10 @@ pub fn write_xy(
         |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
     );
     let pad = |lo: &mut f64, hi: &mut f64| {
-        let span = (*hi - *lo).max(1e-12 * hi.abs().max(1e-300));
-        *lo -= 0.05 * span;
-        *hi += 0.05 * span;
+        let r = drawable_range(*lo, *hi);
+        let span = r.end - r.start;
+        let r = drawable_range(r.start - 0.05 * span, r.end + 0.05 * span);
+        (*lo, *hi) = (r.start, r.end);
     };
     pad(&mut x0, &mut x1);
     if y0 >= 0.0 {
@@ -1200,6 +1386,16 @@ pub fn write_xy(
             .x_desc(x_label)
             .y_desc(y_label)
             .draw()?;
+        if pts.is_empty() {
+            let plot = chart.plotting_area().strip_coord_spec();
+            let (pw, ph) = plot.dim_in_pixel();
+            plot.draw_text(
+                "no finite point to draw",
+                &text_style(20.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
+                (pw as i32 / 2, ph as i32 / 2),
+            )?;
+            return Ok(());
+        }
         for (k, s) in series.iter().enumerate() {
             let color = SERIES_COLORS[k % SERIES_COLORS.len()];
             let style = ShapeStyle::from(&color).stroke_width(3);
@@ -1207,8 +1403,11 @@ pub fn write_xy(
                 .points
                 .iter()
                 .copied()
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .filter(|&(x, y)| usable(x) && usable(y))
                 .collect();
+            if p.is_empty() {
+                continue;
+            }
             p.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart
                 .draw_series(LineSeries::new(p.clone(), style))?
