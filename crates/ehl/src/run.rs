@@ -319,6 +319,32 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
     Ok(solution)
 }
 
+/// The friction figures into `summary`, or, when the integral fails, `friction_failed` and a
+/// warning (the solved pressure and film are kept).
+fn add_friction(summary: &mut Summary, input: &crate::friction::FrictionInput) {
+    match crate::friction::friction(input) {
+        Ok(f) if f.force.is_finite() && f.coefficient.is_finite() => {
+            summary.friction_force_n = Some(f.force);
+            summary.friction_coefficient = Some(f.coefficient);
+        }
+        Ok(f) => {
+            summary.friction_failed = true;
+            summary.warnings.push(format!(
+                "friction not computed: the friction integral gave a non-finite force ({}); pressure and film are solved, friction_force_n and friction_coefficient are left out",
+                f.force
+            ));
+        }
+        Err(e) => {
+            summary.friction_failed = true;
+            let m = e.to_string();
+            let m = m.strip_prefix("solver: ").unwrap_or(&m);
+            summary.warnings.push(format!(
+                "friction not computed ({m}); pressure and film are solved, friction_force_n and friction_coefficient are left out (check lubricant.rheology, motion.slide_to_roll)"
+            ));
+        }
+    }
+}
+
 /// Whether `case` asks for friction: an EHL case with sliding (`motion.slide_to_roll != 0`) or
 /// a non-Newtonian `lubricant.rheology` (whose only use is the friction figure). Pure rolling of
 /// a Newtonian film still gets a friction figure (the Poiseuille part) when it can be computed,
@@ -581,36 +607,19 @@ fn solve_ehl(
     // A failed friction integral does not throw away the solved pressure and film: the friction
     // keys are left out, `friction_failed` is set and a warning says why.
     if r.converged {
-        match crate::friction::friction(&crate::friction::FrictionInput {
-            grid: &grid,
-            pressure: &r.pressure,
-            film: &r.film,
-            viscosity: &r.viscosity,
-            u1: motion.u1(),
-            u2: motion.u2(),
-            rheology: &lubricant.rheology,
-            load,
-        }) {
-            Ok(f) if f.force.is_finite() && f.coefficient.is_finite() => {
-                summary.friction_force_n = Some(f.force);
-                summary.friction_coefficient = Some(f.coefficient);
-            }
-            Ok(f) => {
-                summary.friction_failed = true;
-                summary.warnings.push(format!(
-                    "friction not computed: the friction integral gave a non-finite force ({}); pressure and film are solved, friction_force_n and friction_coefficient are left out",
-                    f.force
-                ));
-            }
-            Err(e) => {
-                summary.friction_failed = true;
-                let m = e.to_string();
-                let m = m.strip_prefix("solver: ").unwrap_or(&m);
-                summary.warnings.push(format!(
-                    "friction not computed ({m}); pressure and film are solved, friction_force_n and friction_coefficient are left out (check lubricant.rheology, motion.slide_to_roll)"
-                ));
-            }
-        }
+        add_friction(
+            &mut summary,
+            &crate::friction::FrictionInput {
+                grid: &grid,
+                pressure: &r.pressure,
+                film: &r.film,
+                viscosity: &r.viscosity,
+                u1: motion.u1(),
+                u2: motion.u2(),
+                rheology: &lubricant.rheology,
+                load,
+            },
+        );
     }
     Ok(Solution {
         grid,
@@ -629,4 +638,67 @@ fn solve_ehl(
 /// estimates, grid resolution.
 pub fn check_text(case: &Case) -> String {
     crate::reference::check_report(case).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_friction_integral_is_a_warning_not_an_error() {
+        // a Newtonian film without limiting shear stress, collapsed (h = 0) in a pressurised
+        // cell under sliding: the shear stress is unbounded and the integral fails
+        let grid = Grid::new(2, 1, -1e-4, 1e-4, -0.5, 0.5);
+        let mut s = Summary::default();
+        add_friction(
+            &mut s,
+            &crate::friction::FrictionInput {
+                grid: &grid,
+                pressure: &[1e9, 1e9],
+                film: &[0.0, 1e-7],
+                viscosity: &[1.0, 1.0],
+                u1: 2.1,
+                u2: 1.9,
+                rheology: &crate::case::Rheology::Newtonian,
+                load: 2e5,
+            },
+        );
+        assert!(s.friction_failed && s.friction_coefficient.is_none());
+        assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+        assert!(s.warnings[0].contains("friction not computed"), "{:?}", s.warnings);
+        s.friction_requested = true;
+        assert!(s.requested_friction_failed());
+        s.friction_requested = false;
+        assert!(!s.requested_friction_failed());
+        let json = serde_json::to_value(&s).unwrap();
+        assert_eq!(json["friction_failed"], true);
+        assert!(json.get("friction_coefficient").is_none());
+    }
+
+    #[test]
+    fn memory_estimate_scales_with_the_grid_and_the_limit_names_the_key() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/ehl_ball_on_glass.toml"
+        ))
+        .unwrap();
+        let small = crate::case::parse_str(&text, "c.toml", &[]).unwrap();
+        let mut big = small.clone();
+        big.grid.nx = 8192;
+        big.grid.ny = 8192;
+        let (es, eb) = (memory_estimate(&small), memory_estimate(&big));
+        let cells = |c: &Case| (c.grid.nx * c.grid.ny) as f64;
+        // per cell: a few kB for EHL (GMRES basis, operator spectra, preconditioner)
+        let per_cell = eb.bytes / cells(&big);
+        assert!((1500.0..6000.0).contains(&per_cell), "{per_cell}");
+        assert!(es.bytes < eb.bytes);
+        let (k, m) = check_memory(&big, 8e9, "a test limit").unwrap_err();
+        assert_eq!(k, "grid.nx");
+        assert!(m.contains("GB") && m.contains("EHL_MEMORY_LIMIT"), "{m}");
+        assert!(check_memory(&small, 8e9, "a test limit").is_ok());
+        // a dry solve needs far less per cell
+        let mut dry = big.clone();
+        dry.kind = Kind::Dry;
+        assert!(memory_estimate(&dry).bytes < 0.5 * eb.bytes);
+    }
 }

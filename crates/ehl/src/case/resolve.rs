@@ -25,6 +25,11 @@ pub const DEFAULT_DRY_ITERATIONS: usize = 500;
 /// load-balance iterations).
 pub const DEFAULT_EHL_ITERATIONS: usize = 200;
 
+/// Smallest Young's modulus accepted (Pa): soft elastomers.
+pub const MIN_MODULUS: f64 = 1e6;
+/// Largest Young's modulus accepted (Pa): ten times diamond.
+pub const MAX_MODULUS: f64 = 1e13;
+
 const SHAPES: &[&str] = &["roller", "ball", "flat"];
 const PROFILE_KINDS: &[&str] = &[
     "straight",
@@ -87,6 +92,20 @@ fn body(top: &Sec, name: &str) -> R<Body> {
         "Pa",
         "Young's modulus in Pa, e.g. youngs_modulus = 210e9 for steel",
     )?;
+    // 1 MPa (soft elastomers) .. 10 TPa (ten times diamond, the stiffest solid at ~1.2 TPa):
+    // outside, no solid is meant, and E' enters the Hertz scales as E'^(-1/2..-1/3) where
+    // 1e-300 or 1e300 overflow the deflection arithmetic
+    if !(MIN_MODULUS..=MAX_MODULUS).contains(&youngs_modulus) {
+        return Err(s.err(
+            "youngs_modulus",
+            format!(
+                "{} Pa is outside the range of solids, {} .. {} Pa (soft elastomers to ten times diamond); give Young's modulus in Pa, e.g. 210e9 for steel",
+                fmt_num(youngs_modulus),
+                fmt_num(MIN_MODULUS),
+                fmt_num(MAX_MODULUS)
+            ),
+        ));
+    }
     let nu = s.required_num(
         "poisson_ratio",
         "dimensionless",
@@ -574,8 +593,8 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64, f64)> {
         Err(s.err(
             form,
             format!(
-                "{} = {} gives a Hertz pressure of {} Pa, {} times the reduced modulus E' = {} Pa; the contact models hold for p_h / E' between {} and {} (above: the contact is no longer small against the radius and linear elasticity ends; below: the deflection is lost in round-off)",
-                form, fmt_num(v), fmt_num(ph), fmt_num(ratio), fmt_num(e_red),
+                "{} = {} gives a Hertz pressure of {} Pa, {} times the reduced modulus E' = {} Pa (from body1/body2.youngs_modulus and poisson_ratio) at the reduced radius R = {} m (from body1/body2.radius, and length for rollers); the contact models hold for p_h / E' between {} and {} (above: the contact is no longer small against the radius and linear elasticity ends; below: the deflection is lost in round-off)",
+                form, fmt_num(v), fmt_num(ph), fmt_num(ratio), fmt_num(e_red), fmt_num(r),
                 fmt_num(MIN_PRESSURE_OVER_MODULUS), fmt_num(MAX_PRESSURE_OVER_MODULUS)
             ),
         ))
