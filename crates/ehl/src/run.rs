@@ -401,6 +401,12 @@ fn check_fields(case: &Case, s: &Solution) -> Result<()> {
             )));
         }
     }
+    if let Err(k) = crate::output::summary::check_finite(&s.summary) {
+        return Err(Error::Solver(format!(
+            "the summary figure {k} is not finite: the case is outside the range where the solver's arithmetic holds; check {}",
+            likely_keys(case, &k)
+        )));
+    }
     let sm = &s.summary;
     for (name, v) in [
         ("max_pressure_pa", sm.max_pressure_pa),
@@ -446,7 +452,9 @@ fn clamp_negative_film(s: &mut Solution) {
             *v = 0.0;
         }
     }
-    if count > 0 {
+    // dry: the loaded gap is zero in contact, its negative values are the round-off of the
+    // contact condition; EHL: a film that collapsed is a finding worth a warning
+    if count > 0 && s.fields.viscosity.is_some() {
         sm.warnings.push(format!(
             "the film collapsed to contact: the solver's film was negative in {count} cell(s) (down to {worst:.3e} m) and is written as 0 there"
         ));

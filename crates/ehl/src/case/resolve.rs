@@ -30,6 +30,11 @@ pub const MIN_MODULUS: f64 = 1e6;
 /// Largest Young's modulus accepted (Pa): ten times diamond.
 pub const MAX_MODULUS: f64 = 1e13;
 
+/// Range of the dimensionless speed U = eta0 u_e / (E' R) accepted for EHL (see `motion`).
+pub const MIN_SPEED_PARAMETER: f64 = 1e-16;
+/// See [`MIN_SPEED_PARAMETER`].
+pub const MAX_SPEED_PARAMETER: f64 = 1e-7;
+
 const SHAPES: &[&str] = &["roller", "ball", "flat"];
 const PROFILE_KINDS: &[&str] = &[
     "straight",
@@ -815,6 +820,26 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
             s.positive("dimensionless_speed", "dimensionless")?.expect("present") * e_red * r / eta0
         }
     };
+    // U = eta0 u_e / (E' R): EHL solutions and film formulas are established for U from about
+    // 1e-14 (Moes' charts reach M, L for U ~ 1e-14) to 1e-8; outside 1e-16 .. 1e-7 the film
+    // is either far below any surface roughness (h/R ~ U^0.7 < 1e-11) or so thick that the
+    // contact is hydrodynamic (no elastic flattening) and the flows overflow
+    let u_dim = units::speed_parameter(eta0, u_e, e_red, r);
+    if !(MIN_SPEED_PARAMETER..=MAX_SPEED_PARAMETER).contains(&u_dim) {
+        let k = if s.has("entrainment_speed") {
+            "entrainment_speed"
+        } else {
+            "dimensionless_speed"
+        };
+        return Err(s.err(
+            k,
+            format!(
+                "gives the dimensionless speed U = eta0 u_e/(E' R) = {} (u_e = {} m/s, eta0 = {} Pa s from lubricant.viscosity, E' = {} Pa, R = {} m); the EHL solver is meaningful for U between {} and {}",
+                fmt_num(u_dim), fmt_num(u_e), fmt_num(eta0), fmt_num(e_red), fmt_num(r),
+                fmt_num(MIN_SPEED_PARAMETER), fmt_num(MAX_SPEED_PARAMETER)
+            ),
+        ));
+    }
     let srr = s.finite("slide_to_roll", "dimensionless")?.unwrap_or(0.0);
     if srr.abs() > 2.0 {
         return Err(s.err(
