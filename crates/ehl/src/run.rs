@@ -77,6 +77,163 @@ pub fn operator_factory(
     }
 }
 
+/// Largest `solver.mirror_levels` accepted. Each level adds images of the pressure beyond each
+/// free end, one roller length further out, so their effect on the contact decays with the
+/// level. Measured on `examples/dry_roller_mirror1.toml` (psi = 1, the slowest case), the
+/// maximum pressure is 7.3987, 7.2887, 7.2544, 7.2473, 7.2447, 7.2428 GPa at levels 2, 4, 8,
+/// 12, 16, 24: one more level changes it by less than 1e-4 relative from level 12 on
+/// (9e-5 per level between 12 and 16, 3e-5 between 16 and 24). 16 is the cap: more levels cost
+/// one kernel table each (time, no memory) and change nothing that matters.
+pub const MAX_MIRROR_LEVELS: usize = 16;
+
+/// Bytes used when /proc/meminfo has no MemAvailable line (not Linux): 16 GiB.
+pub const DEFAULT_MEMORY_LIMIT: f64 = 16.0 * (1u64 << 30) as f64;
+
+/// The environment variable that overrides the memory limit (bytes, e.g. `8e9`).
+pub const MEMORY_LIMIT_ENV: &str = "EHL_MEMORY_LIMIT";
+
+/// The peak memory a solve of `case` needs, estimated before solving, and the case key that
+/// drives it. A model of the large arrays, correct to within about a factor 2 (checked against
+/// the peak resident size of dry and EHL runs from 64 x 64 to 512 x 512, see the test
+/// `memory_estimate_tracks_measured_peaks` in the notes of docs/case-file.md).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MemoryEstimate {
+    /// estimated peak bytes
+    pub bytes: f64,
+    /// `grid.nx` (or `grid.ny` when ny > nx): the grid drives the estimate
+    pub key: &'static str,
+}
+
+/// Next length of the form 2^a 3^b 5^c (the FFT padding of the elastic operator).
+fn fft_len(n: usize) -> usize {
+    let mut m = n.max(1);
+    loop {
+        let mut k = m;
+        for p in [2, 3, 5] {
+            while k % p == 0 {
+                k /= p;
+            }
+        }
+        if k == 1 {
+            return m;
+        }
+        m += 1;
+    }
+}
+
+/// Bytes of one elastic operator on an `nx x ny` grid, while it is built and after: the kernel
+/// spectra (one, two with reflected images) of (px/2+1) x py complex numbers, the scratch of an
+/// application (row spectra, two transposed spectra, real rows) and, during the build, the
+/// padded real table, its row spectra and two (2nx-1)(2ny-1) kernel tables.
+fn operator_bytes(nx: usize, ny: usize, reflected: bool) -> f64 {
+    let px = fft_len(2 * nx - 1).max(2) as f64;
+    let py = if ny == 1 { 1.0 } else { fft_len(2 * ny - 1) as f64 };
+    let hx = (px / 2.0).floor() + 1.0;
+    let (nxf, nyf) = (nx as f64, ny as f64);
+    let spectra = (if reflected { 2.0 } else { 1.0 }) * hx * py * 16.0;
+    let scratch = nyf * hx * 16.0 + 2.0 * hx * py * 16.0 + nyf * px * 8.0;
+    let build = py * px * 8.0 + py * hx * 16.0 + hx * py * 16.0
+        + 2.0 * (2.0 * nxf - 1.0) * (2.0 * nyf - 1.0).max(1.0) * 8.0;
+    spectra + scratch + build
+}
+
+/// Estimates the peak memory of [`solve`] for `case` (see [`MemoryEstimate`]). Per cell
+/// (n = nx ny, 8-byte floats):
+///
+/// * elastic operators: [`operator_bytes`] (about 200 bytes per cell) on the fine grid and, as the
+///   dry and EHL solvers ask for coarser grids, about 1/3 more;
+/// * dry solver: about 16 work vectors (128 bytes) and the output fields (5 x 8);
+/// * EHL: the flexible GMRES basis, 2 (restart + 1) vectors (restart 80: 1296 bytes), four
+///   Newton states of 9 vectors, the 7 vectors of the linearisation, the line preconditioner's
+///   banded blocks (2 kl + ku + 1 = 3 band + 6 diagonals, band up to 64 on grids with
+///   dy >> dx), twice (the spare of the next Newton step), with 1/3 more for its multigrid
+///   levels.
+pub fn memory_estimate(case: &Case) -> MemoryEstimate {
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let n = nx as f64 * ny as f64;
+    let images = case.solver.mirror_levels > 0
+        && !case.is_infinite_line()
+        && [&case.body1, &case.body2]
+            .iter()
+            .any(|b| b.shape == Shape::Roller && b.length.is_finite());
+    let elastic = operator_bytes(nx, ny, images) * 4.0 / 3.0;
+    let dry = 16.0 * 8.0 * n;
+    let fields = 5.0 * 8.0 * n;
+    let ehl = if case.kind == Kind::Ehl {
+        let restart = EhlParams::default().gmres_restart as f64;
+        let gmres = 2.0 * (restart + 1.0) * 8.0 * n;
+        let states = 4.0 * 9.0 * 8.0 * n + 7.0 * 8.0 * n;
+        // the band: the Hertz contact is -1..1 in grid units b along x and along y
+        let (dx, dy) = (
+            (g.x_max - g.x_min) / nx as f64,
+            (g.y_max - g.y_min) / ny as f64,
+        );
+        let band = if ny > 1 {
+            ((dy / (2.0 * dx)).ceil().min(64.0)).max(4.0)
+        } else {
+            4.0
+        }
+        .min(nx as f64);
+        let precond = 2.0 * (3.0 * band + 6.0 + 2.0) * 8.0 * n * 4.0 / 3.0;
+        gmres + states + precond
+    } else {
+        0.0
+    };
+    MemoryEstimate {
+        bytes: elastic + dry + fields + ehl,
+        key: if ny > nx { "grid.ny" } else { "grid.nx" },
+    }
+}
+
+/// The memory a solve may use (bytes): `EHL_MEMORY_LIMIT` when set to a positive number, else
+/// MemAvailable of /proc/meminfo, else [`DEFAULT_MEMORY_LIMIT`]. The second value says where the
+/// figure comes from, for messages.
+pub fn memory_limit() -> (f64, &'static str) {
+    if let Ok(v) = std::env::var(MEMORY_LIMIT_ENV) {
+        if let Ok(b) = v.trim().parse::<f64>() {
+            if b > 0.0 && b.is_finite() {
+                return (b, "EHL_MEMORY_LIMIT");
+            }
+        }
+    }
+    if let Ok(text) = std::fs::read_to_string("/proc/meminfo") {
+        for line in text.lines() {
+            if let Some(rest) = line.strip_prefix("MemAvailable:") {
+                let mut it = rest.split_whitespace();
+                if let Some(Ok(kb)) = it.next().map(|t| t.parse::<f64>()) {
+                    return (kb * 1024.0, "the available memory (MemAvailable)");
+                }
+            }
+        }
+    }
+    (DEFAULT_MEMORY_LIMIT, "the default limit (no /proc/meminfo)")
+}
+
+/// `Err((key, message))` when the estimated memory of `case` exceeds `limit` bytes
+/// (`source` says where the limit comes from).
+pub fn check_memory(
+    case: &Case,
+    limit: f64,
+    source: &str,
+) -> std::result::Result<(), (String, String)> {
+    let est = memory_estimate(case);
+    if est.bytes <= limit {
+        return Ok(());
+    }
+    let kind = if case.kind == Kind::Ehl { "an EHL" } else { "a dry" };
+    Err((
+        est.key.to_string(),
+        format!(
+            "{kind} solve on nx x ny = {} x {} cells needs about {:.2} GB (estimate, good to a factor 2), more than the {:.2} GB of {source}; use fewer cells (the memory grows with nx * ny), or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+            case.grid.nx,
+            case.grid.ny,
+            est.bytes / 1e9,
+            limit / 1e9
+        ),
+    ))
+}
+
 /// Index and value of the largest entry.
 fn argmax(v: &[f64]) -> (usize, f64) {
     v.iter().enumerate().fold(
@@ -127,7 +284,7 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
             summary.converged = dry.converged;
             summary.termination = dry.termination.clone();
             summary.iterations = dry.total_iterations;
-            summary.residual = dry.residual;
+            summary.residual = dry.residual.is_finite().then_some(dry.residual);
             summary.load_n = dry.load;
             summary.load_error = (dry.load - load).abs() / load;
             summary.approach_m = dry.approach.is_finite().then_some(dry.approach);
@@ -153,9 +310,202 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
         )?,
     };
     let mut solution = solution;
+    check_fields(case, &solution)?;
+    solution.summary.friction_requested = friction_requested(case);
+    clamp_negative_film(&mut solution);
+    edge_pressure_warnings(case, &geometry, &mut solution);
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
     progress.report(1.0, "done");
     Ok(solution)
+}
+
+/// The friction figures into `summary`, or, when the integral fails, `friction_failed` and a
+/// warning (the solved pressure and film are kept).
+fn add_friction(summary: &mut Summary, input: &crate::friction::FrictionInput) {
+    match crate::friction::friction(input) {
+        Ok(f) if f.force.is_finite() && f.coefficient.is_finite() => {
+            summary.friction_force_n = Some(f.force);
+            summary.friction_coefficient = Some(f.coefficient);
+        }
+        Ok(f) => {
+            summary.friction_failed = true;
+            summary.warnings.push(format!(
+                "friction not computed: the friction integral gave a non-finite force ({}); pressure and film are solved, friction_force_n and friction_coefficient are left out",
+                f.force
+            ));
+        }
+        Err(e) => {
+            summary.friction_failed = true;
+            let m = e.to_string();
+            let m = m.strip_prefix("solver: ").unwrap_or(&m);
+            summary.warnings.push(format!(
+                "friction not computed ({m}); pressure and film are solved, friction_force_n and friction_coefficient are left out (check lubricant.rheology, motion.slide_to_roll)"
+            ));
+        }
+    }
+}
+
+/// Whether `case` asks for friction: an EHL case with sliding (`motion.slide_to_roll != 0`) or
+/// a non-Newtonian `lubricant.rheology` (whose only use is the friction figure). Pure rolling of
+/// a Newtonian film still gets a friction figure (the Poiseuille part) when it can be computed,
+/// but its failure is then only a warning.
+pub fn friction_requested(case: &Case) -> bool {
+    case.kind == Kind::Ehl
+        && (case.motion.as_ref().is_some_and(|m| m.slide_to_roll != 0.0)
+            || case
+                .lubricant
+                .as_ref()
+                .is_some_and(|l| l.rheology != crate::case::Rheology::Newtonian))
+}
+
+/// The case keys that most likely drive a non-finite value in the solved fields, for the error
+/// that replaces it.
+fn likely_keys(case: &Case, field: &str) -> String {
+    let mut keys = vec!["body1.youngs_modulus", "body2.youngs_modulus", "load"];
+    if case.kind == Kind::Ehl {
+        keys.extend(["motion.entrainment_speed", "lubricant.viscosity"]);
+        if matches!(field, "viscosity" | "film" | "pressure") {
+            keys.push("lubricant.pressure_viscosity_coefficient");
+        }
+    }
+    keys.push("grid");
+    keys.join(", ")
+}
+
+/// Safety net after the solvers: a NaN in a field, or an infinity where none may be (any field
+/// but the film, which is +inf where a body has no material), is an error naming the keys that
+/// likely drive it instead of a summary or an output file with non-finite numbers.
+fn check_fields(case: &Case, s: &Solution) -> Result<()> {
+    let f = &s.fields;
+    let mut named: Vec<(&str, &[f64], bool)> = vec![
+        ("pressure", &f.pressure, false),
+        ("deformation", &f.deformation, false),
+    ];
+    if let Some(h) = &f.film {
+        named.push(("film", h, true));
+    }
+    if let Some(v) = &f.viscosity {
+        named.push(("viscosity", v, false));
+    }
+    if let Some(v) = &f.density {
+        named.push(("density", v, false));
+    }
+    for (name, v, inf_ok) in named {
+        if let Some(x) = v
+            .iter()
+            .find(|x| x.is_nan() || (x.is_infinite() && !(inf_ok && **x > 0.0)))
+        {
+            return Err(Error::Solver(format!(
+                "the solved {name} holds {x}: the case is outside the range where the solver's arithmetic holds; check {}",
+                likely_keys(case, name)
+            )));
+        }
+    }
+    if let Err(k) = crate::output::summary::check_finite(&s.summary) {
+        return Err(Error::Solver(format!(
+            "the summary figure {k} is not finite: the case is outside the range where the solver's arithmetic holds; check {}",
+            likely_keys(case, &k)
+        )));
+    }
+    let sm = &s.summary;
+    for (name, v) in [
+        ("max_pressure_pa", sm.max_pressure_pa),
+        ("load_n", sm.load_n),
+        ("hertz_pressure_pa", sm.hertz_pressure_pa),
+        ("hertz_half_width_m", sm.hertz_half_width_m),
+    ] {
+        if !v.is_finite() {
+            return Err(Error::Solver(format!(
+                "the summary figure {name} is {v}: the case is outside the range where the solver's arithmetic holds; check {}",
+                likely_keys(case, name)
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// A film is never negative. The EHL film h = h0 + gap + deflection can end a little below zero
+/// where the film has collapsed to contact (at round-off of the film scale on a converged
+/// solution, more on one that did not converge); such values are written as 0 and reported.
+fn clamp_negative_film(s: &mut Solution) {
+    let Some(h) = s.fields.film.as_mut() else {
+        return;
+    };
+    let (mut count, mut worst) = (0usize, 0.0f64);
+    for v in h.iter_mut() {
+        if *v < 0.0 {
+            count += 1;
+            worst = worst.min(*v);
+            *v = 0.0;
+        }
+    }
+    let sm = &mut s.summary;
+    for v in [
+        &mut sm.central_film_m,
+        &mut sm.min_film_m,
+        &mut sm.centerline_min_film_m,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        if *v < 0.0 {
+            *v = 0.0;
+        }
+    }
+    // dry: the loaded gap is zero in contact, its negative values are the round-off of the
+    // contact condition; EHL: a film that collapsed is a finding worth a warning
+    if count > 0 && s.fields.viscosity.is_some() {
+        sm.warnings.push(format!(
+            "the film collapsed to contact: the solver's film was negative in {count} cell(s) (down to {worst:.3e} m) and is written as 0 there"
+        ));
+    }
+}
+
+/// Fraction of the maximum pressure above which a pressure on a domain edge means that the
+/// contact reaches the edge: under Hertz, p/p0 = sqrt(1 - (r/a)^2) > 0.1 only for r > 0.995 a,
+/// so a boundary cell above 10 % lies within 0.5 % of the contact edge or the contact is cut
+/// off by the domain. A domain that contains the contact has (numerically) zero pressure there.
+pub const EDGE_PRESSURE_FRACTION: f64 = 0.1;
+
+/// Warns, per domain edge, when the pressure stays high at the edge (see
+/// [`EDGE_PRESSURE_FRACTION`]). A y edge that lies at a roller's free end (within one cell) is
+/// not checked: the pressure legitimately peaks there, and the grid's default y range is the
+/// rollers' axial extent.
+fn edge_pressure_warnings(case: &Case, geometry: &Geometry, s: &mut Solution) {
+    let g = s.grid;
+    let p = &s.fields.pressure;
+    let pmax = p.iter().cloned().fold(0.0f64, f64::max);
+    if !(pmax > 0.0) {
+        return;
+    }
+    let mut ends = Vec::new();
+    for k in [1, 2] {
+        if let Some((lo, hi)) = geometry.body_ends(k) {
+            ends.extend([lo, hi]);
+        }
+    }
+    let at_end = |y: f64| ends.iter().any(|e| (e - y).abs() <= g.dy * (1.0 + 1e-9));
+    let mut edges: Vec<(&str, f64)> = Vec::new();
+    let col = |i: usize| (0..g.ny).map(|j| p[g.idx(i, j)]).fold(0.0f64, f64::max);
+    let row = |j: usize| (0..g.nx).map(|i| p[g.idx(i, j)]).fold(0.0f64, f64::max);
+    edges.push(("grid.x_min", col(0)));
+    edges.push(("grid.x_max", col(g.nx - 1)));
+    if g.ny > 1 && !case.is_infinite_line() {
+        if !at_end(g.y_min) {
+            edges.push(("grid.y_min", row(0)));
+        }
+        if !at_end(g.y_max()) {
+            edges.push(("grid.y_max", row(g.ny - 1)));
+        }
+    }
+    for (key, pe) in edges {
+        if pe > EDGE_PRESSURE_FRACTION * pmax {
+            s.summary.warnings.push(format!(
+                "the pressure at the {key} edge of the domain is {:.0} % of the maximum pressure: the contact reaches the edge and may be cut off, so the pressure and load figures are doubtful; widen {key}",
+                100.0 * pe / pmax
+            ));
+        }
+    }
 }
 
 /// Film value at (x, y) by bilinear interpolation between cell centres (clamped at the edges);
@@ -228,7 +578,8 @@ fn solve_ehl(
     summary.converged = r.converged;
     summary.termination = r.termination.clone();
     summary.iterations = r.iterations;
-    summary.residual = r.residual;
+    // the EHL solver writes f64::MAX for a residual it could not evaluate: leave it out
+    summary.residual = (r.residual.is_finite() && r.residual < f64::MAX).then_some(r.residual);
     summary.load_n = r.pressure.iter().sum::<f64>() * area;
     summary.load_error = (summary.load_n - load).abs() / load;
     let (k, pmax) = argmax(&r.pressure);
@@ -261,19 +612,22 @@ fn solve_ehl(
         summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);
     }
     // Friction only from a converged solution: a figure from a half-solved film would be noise.
+    // A failed friction integral does not throw away the solved pressure and film: the friction
+    // keys are left out, `friction_failed` is set and a warning says why.
     if r.converged {
-        let f = crate::friction::friction(&crate::friction::FrictionInput {
-            grid: &grid,
-            pressure: &r.pressure,
-            film: &r.film,
-            viscosity: &r.viscosity,
-            u1: motion.u1(),
-            u2: motion.u2(),
-            rheology: &lubricant.rheology,
-            load,
-        })?;
-        summary.friction_force_n = Some(f.force);
-        summary.friction_coefficient = Some(f.coefficient);
+        add_friction(
+            &mut summary,
+            &crate::friction::FrictionInput {
+                grid: &grid,
+                pressure: &r.pressure,
+                film: &r.film,
+                viscosity: &r.viscosity,
+                u1: motion.u1(),
+                u2: motion.u2(),
+                rheology: &lubricant.rheology,
+                load,
+            },
+        );
     }
     Ok(Solution {
         grid,
@@ -292,4 +646,67 @@ fn solve_ehl(
 /// estimates, grid resolution.
 pub fn check_text(case: &Case) -> String {
     crate::reference::check_report(case).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_friction_integral_is_a_warning_not_an_error() {
+        // a Newtonian film without limiting shear stress, collapsed (h = 0) in a pressurised
+        // cell under sliding: the shear stress is unbounded and the integral fails
+        let grid = Grid::new(2, 1, -1e-4, 1e-4, -0.5, 0.5);
+        let mut s = Summary::default();
+        add_friction(
+            &mut s,
+            &crate::friction::FrictionInput {
+                grid: &grid,
+                pressure: &[1e9, 1e9],
+                film: &[0.0, 1e-7],
+                viscosity: &[1.0, 1.0],
+                u1: 2.1,
+                u2: 1.9,
+                rheology: &crate::case::Rheology::Newtonian,
+                load: 2e5,
+            },
+        );
+        assert!(s.friction_failed && s.friction_coefficient.is_none());
+        assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+        assert!(s.warnings[0].contains("friction not computed"), "{:?}", s.warnings);
+        s.friction_requested = true;
+        assert!(s.requested_friction_failed());
+        s.friction_requested = false;
+        assert!(!s.requested_friction_failed());
+        let json = serde_json::to_value(&s).unwrap();
+        assert_eq!(json["friction_failed"], true);
+        assert!(json.get("friction_coefficient").is_none());
+    }
+
+    #[test]
+    fn memory_estimate_scales_with_the_grid_and_the_limit_names_the_key() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/ehl_ball_on_glass.toml"
+        ))
+        .unwrap();
+        let small = crate::case::parse_str(&text, "c.toml", &[]).unwrap();
+        let mut big = small.clone();
+        big.grid.nx = 8192;
+        big.grid.ny = 8192;
+        let (es, eb) = (memory_estimate(&small), memory_estimate(&big));
+        let cells = |c: &Case| (c.grid.nx * c.grid.ny) as f64;
+        // per cell: a few kB for EHL (GMRES basis, operator spectra, preconditioner)
+        let per_cell = eb.bytes / cells(&big);
+        assert!((1500.0..6000.0).contains(&per_cell), "{per_cell}");
+        assert!(es.bytes < eb.bytes);
+        let (k, m) = check_memory(&big, 8e9, "a test limit").unwrap_err();
+        assert_eq!(k, "grid.nx");
+        assert!(m.contains("GB") && m.contains("EHL_MEMORY_LIMIT"), "{m}");
+        assert!(check_memory(&small, 8e9, "a test limit").is_ok());
+        // a dry solve needs far less per cell
+        let mut dry = big.clone();
+        dry.kind = Kind::Dry;
+        assert!(memory_estimate(&dry).bytes < 0.5 * eb.bytes);
+    }
 }

@@ -26,8 +26,10 @@ pub struct Summary {
     /// why the solver stopped, in words (e.g. "residual 3e-11 < tolerance")
     pub termination: String,
     pub iterations: usize,
-    /// final relative residual of the solver
-    pub residual: f64,
+    /// final relative residual of the solver; absent when the solver could not evaluate it
+    /// (a solve that broke down)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
     pub wall_time_s: f64,
     /// integrated load (N); for an infinite line contact, per unit length (N/m)
     pub load_n: f64,
@@ -65,6 +67,24 @@ pub struct Summary {
     /// ehl: mass flow out through the sides (roller ends) (kg/s); inflow = outflow + side leakage
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side_leakage_kg_s: Option<f64>,
+    /// true when the EHL pressure and film were solved but the friction integral failed (the
+    /// friction keys are then absent and `warnings` says why); written only when true
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub friction_failed: bool,
+    /// whether the case asks for friction ([`crate::run::friction_requested`]); not written
+    #[serde(skip)]
+    pub friction_requested: bool,
+    /// findings about the solution, one sentence each (docs/case-file.md lists them); always
+    /// written, possibly empty
+    pub warnings: Vec<String>,
+}
+
+impl Summary {
+    /// True when the case asked for friction and the friction integral failed: the CLI then
+    /// exits with a non-zero status although the pressure and film were written.
+    pub fn requested_friction_failed(&self) -> bool {
+        self.friction_failed && self.friction_requested
+    }
 }
 
 /// A solved case.

@@ -169,10 +169,16 @@ pub fn parse_str(text: &str, file: &str, overrides: &[String]) -> Result<Case> {
         overrides::apply(&mut root, o, file)?;
     }
     if let Some(key) = schema::first_unknown(&root) {
+        // a blank key name would vanish from "file: key: message": quote it
+        let shown = if key.split('.').any(|s| s.trim().is_empty()) {
+            format!("`{key}`")
+        } else {
+            key.clone()
+        };
         return Err(Error::Case {
             file: file.to_string(),
             message: schema::unknown_key_message(&key),
-            key,
+            key: shown,
         });
     }
     resolve::resolve(&root, file)

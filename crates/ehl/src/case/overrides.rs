@@ -22,6 +22,34 @@ pub fn parse_value(text: &str) -> Value {
     Value::String(text.to_string())
 }
 
+/// A message when `text` is written as a number that a 64-bit float cannot hold: a finite
+/// literal that overflows to infinity (`1e999`) or a non-zero one that underflows to zero
+/// (`1e-999`). TOML rejects such literals, so without this check they would be taken as
+/// bare strings and reported as "a string".
+pub fn out_of_range(text: &str) -> Option<String> {
+    let t = text.trim();
+    let digits = t.trim_start_matches(['+', '-']).replace('_', "");
+    if !digits.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        return None; // inf, nan, words
+    }
+    let v: f64 = digits.parse().ok()?;
+    let mantissa_nonzero = digits
+        .split(['e', 'E'])
+        .next()
+        .is_some_and(|m| m.chars().any(|c| ('1'..='9').contains(&c)));
+    if v.is_infinite() {
+        Some(format!(
+            "the number `{t}` is out of range: the largest finite number is about 1.8e308"
+        ))
+    } else if v == 0.0 && mantissa_nonzero {
+        Some(format!(
+            "the number `{t}` is out of range: it is not zero but smaller than the smallest number (about 4.9e-324)"
+        ))
+    } else {
+        None
+    }
+}
+
 /// One segment of a key path.
 #[derive(Debug, Clone, PartialEq)]
 enum Seg {
@@ -115,6 +143,9 @@ pub fn apply(root: &mut Table, assignment: &str, file: &str) -> Result<()> {
     };
     let display = check_key(key).map_err(|m| err(key, format!("{m} (in --set {assignment})")))?;
     let (segs, _) = split_path(key).expect("checked by check_key");
+    if let Some(m) = out_of_range(value) {
+        return Err(err(&display, format!("{m} (in --set {assignment})")));
+    }
     let value = parse_value(value);
 
     // walk down, creating missing tables
@@ -204,6 +235,20 @@ mod tests {
         assert_eq!(parse_value("\"ehl\""), Value::String("ehl".into()));
         let t = parse_value("{ kind = \"crowned\", crown_radius = 0.5 }");
         assert_eq!(t.get("crown_radius"), Some(&Value::Float(0.5)));
+    }
+
+    #[test]
+    fn numbers_out_of_range_are_named_so() {
+        assert!(out_of_range("1e999").unwrap().contains("out of range"));
+        assert!(out_of_range("-1.5E+400").unwrap().contains("out of range"));
+        assert!(out_of_range("1e-999").unwrap().contains("out of range"));
+        for ok in ["1e300", "0", "0.0e-999", "inf", "-inf", "nan", "ehl", "\"1e999\""] {
+            assert_eq!(out_of_range(ok), None, "{ok}");
+        }
+        let mut t: Table = "kind = \"dry\"".parse().unwrap();
+        let e = apply(&mut t, "load.force=1e999", "c.toml").unwrap_err().to_string();
+        assert!(e.contains("load.force") && e.contains("out of range"), "{e}");
+        assert!(!e.contains("without quotes"), "{e}");
     }
 
     #[test]

@@ -25,6 +25,16 @@ pub const DEFAULT_DRY_ITERATIONS: usize = 500;
 /// load-balance iterations).
 pub const DEFAULT_EHL_ITERATIONS: usize = 200;
 
+/// Smallest Young's modulus accepted (Pa): soft elastomers.
+pub const MIN_MODULUS: f64 = 1e6;
+/// Largest Young's modulus accepted (Pa): ten times diamond.
+pub const MAX_MODULUS: f64 = 1e13;
+
+/// Range of the dimensionless speed U = eta0 u_e / (E' R) accepted for EHL (see `motion`).
+pub const MIN_SPEED_PARAMETER: f64 = 1e-16;
+/// See [`MIN_SPEED_PARAMETER`].
+pub const MAX_SPEED_PARAMETER: f64 = 1e-7;
+
 const SHAPES: &[&str] = &["roller", "ball", "flat"];
 const PROFILE_KINDS: &[&str] = &[
     "straight",
@@ -87,6 +97,20 @@ fn body(top: &Sec, name: &str) -> R<Body> {
         "Pa",
         "Young's modulus in Pa, e.g. youngs_modulus = 210e9 for steel",
     )?;
+    // 1 MPa (soft elastomers) .. 10 TPa (ten times diamond, the stiffest solid at ~1.2 TPa):
+    // outside, no solid is meant, and E' enters the Hertz scales as E'^(-1/2..-1/3) where
+    // 1e-300 or 1e300 overflow the deflection arithmetic
+    if !(MIN_MODULUS..=MAX_MODULUS).contains(&youngs_modulus) {
+        return Err(s.err(
+            "youngs_modulus",
+            format!(
+                "{} Pa is outside the range of solids, {} .. {} Pa (soft elastomers to ten times diamond); give Young's modulus in Pa, e.g. 210e9 for steel",
+                fmt_num(youngs_modulus),
+                fmt_num(MIN_MODULUS),
+                fmt_num(MAX_MODULUS)
+            ),
+        ));
+    }
     let nu = s.required_num(
         "poisson_ratio",
         "dimensionless",
@@ -418,8 +442,9 @@ enum Contact {
         ulo: f64,
         uhi: f64,
     },
-    /// Point contact (ball on flat or ball on ball); `circular` when R_x == R_y.
-    Point { circular: bool },
+    /// Point contact (ball on flat or ball on ball); `circular` when R_x == R_y; `ry` the
+    /// reduced radius in the axial plane (m).
+    Point { circular: bool, ry: f64 },
 }
 
 fn contact(top: &Sec, b1: &Body, b2: &Body) -> R<Contact> {
@@ -457,8 +482,30 @@ fn contact(top: &Sec, b1: &Body, b2: &Body) -> R<Contact> {
         (Ball, _) | (_, Ball) => {
             let rx = units::reduced_radius(b1.radius, b2.radius);
             let ry = units::reduced_radius(b1.radius_y, b2.radius_y);
+            // R_y / R_x far from 1 makes a contact ellipse so slender that it is a line contact
+            // in all but name (ellipticity ~ (R_y/R_x)^0.64: 19 at 100); its grid would need
+            // cells of aspect ratio ~ k^2 to resolve both semi-axes
+            let ratio = ry / rx;
+            if !(1e-2..=1e2).contains(&ratio) {
+                let k = if b1.shape == Ball && b1.radius_y != b1.radius {
+                    "body1.radius_y"
+                } else if b2.shape == Ball && b2.radius_y != b2.radius {
+                    "body2.radius_y"
+                } else {
+                    "body1.radius_y"
+                };
+                return Err(case_err(
+                    file,
+                    k,
+                    format!(
+                        "the reduced radii R_y / R_x = {} / {} m = {} must lie between 0.01 and 100: beyond, the contact ellipse (ellipticity about (R_y/R_x)^0.64) is so slender that it is a line contact (use rollers) or needs a grid far finer along one axis than the other",
+                        fmt_num(ry), fmt_num(rx), fmt_num(ratio)
+                    ),
+                ));
+            }
             Ok(Contact::Point {
                 circular: (rx - ry).abs() <= 1e-12 * rx,
+                ry,
             })
         }
         _ => {
@@ -500,8 +547,19 @@ fn contact(top: &Sec, b1: &Body, b2: &Body) -> R<Contact> {
     }
 }
 
-/// `[load]` -> (Load, Hertz half-width b or contact radius a in m).
-fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
+/// Largest Hertz pressure over reduced modulus accepted. The half-width is b = 4 R p_h / E'
+/// (line) and a = pi R p0 / E' (point), so p_h / E' <= 0.1 keeps the contact within 0.3-0.4 R,
+/// where the parabolic gap x^2/(2R) of the Hertz and half-space models is within a few per cent
+/// of the circle and strains (~ p/E') are still small; beyond, linear elasticity ends (steel
+/// yields at p_h / E' ~ 0.02).
+pub const MAX_PRESSURE_OVER_MODULUS: f64 = 0.1;
+/// Smallest p_h / E' accepted: below, the deflections (~ b p_h / E') are 1e-12 of the contact
+/// size and vanish in the round-off of the gap.
+pub const MIN_PRESSURE_OVER_MODULUS: f64 = 1e-9;
+
+/// `[load]` -> (Load, Hertz half-width b or semi-axis a_x in m, semi-axis along y over it:
+/// a_y / a_x for a point contact, NaN for a line contact).
+fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64, f64)> {
     let what = "a [load] table with one of force (N), max_hertz_pressure (Pa), force_per_length (N/m) or dimensionless_load";
     let t = sub(top, "load", "the applied load")?.ok_or_else(|| top.missing("load", what))?;
     let s = Sec {
@@ -531,8 +589,23 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
         _ => "dimensionless",
     };
     let v = s.positive(form, units_of(form))?.expect("present");
+    // the Hertz pressure against E': checked before anything is derived from the load
+    let check_ph = |ph: f64| -> R<()> {
+        let ratio = ph / e_red;
+        if (MIN_PRESSURE_OVER_MODULUS..=MAX_PRESSURE_OVER_MODULUS).contains(&ratio) {
+            return Ok(());
+        }
+        Err(s.err(
+            form,
+            format!(
+                "{} = {} gives a Hertz pressure of {} Pa, {} times the reduced modulus E' = {} Pa (from body1/body2.youngs_modulus and poisson_ratio) at the reduced radius R = {} m (from body1/body2.radius, and length for rollers); the contact models hold for p_h / E' between {} and {} (above: the contact is no longer small against the radius and linear elasticity ends; below: the deflection is lost in round-off)",
+                form, fmt_num(v), fmt_num(ph), fmt_num(ratio), fmt_num(e_red), fmt_num(r),
+                fmt_num(MIN_PRESSURE_OVER_MODULUS), fmt_num(MAX_PRESSURE_OVER_MODULUS)
+            ),
+        ))
+    };
     match c {
-        Contact::Point { circular } => {
+        Contact::Point { circular, ry } => {
             let f = match form {
                 "force" => v,
                 "max_hertz_pressure" if circular => units::point_load_for_pressure(v, r, e_red),
@@ -552,13 +625,21 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
                 // W = F / (E' R^2)
                 _ => v * e_red * r * r,
             };
-            let a = units::hertz_point(f, r, e_red).a;
+            let (a, ky, p0) = if circular {
+                let h = units::hertz_point(f, r, e_red);
+                (h.a, 1.0, h.p0)
+            } else {
+                let h = crate::reference::hertz::hertz_elliptical(f, r, ry, e_red);
+                (h.a_x, h.a_y / h.a_x, h.p0)
+            };
+            check_ph(p0)?;
             Ok((
                 Load {
                     force: f,
                     force_per_length: f / (2.0 * a),
                 },
                 a,
+                ky,
             ))
         }
         Contact::Line { len, .. } => {
@@ -575,6 +656,7 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
                 // W = w' / (E' R)
                 _ => v * e_red * r,
             };
+            check_ph(units::hertz_line_pressure(w, r, e_red))?;
             let l = if len.is_finite() { len } else { 1.0 };
             Ok((
                 Load {
@@ -582,6 +664,7 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64)> {
                     force_per_length: w,
                 },
                 units::hertz_line_half_width(w, r, e_red),
+                f64::NAN,
             ))
         }
     }
@@ -737,6 +820,26 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
             s.positive("dimensionless_speed", "dimensionless")?.expect("present") * e_red * r / eta0
         }
     };
+    // U = eta0 u_e / (E' R): EHL solutions and film formulas are established for U from about
+    // 1e-14 (Moes' charts reach M, L for U ~ 1e-14) to 1e-8; outside 1e-16 .. 1e-7 the film
+    // is either far below any surface roughness (h/R ~ U^0.7 < 1e-11) or so thick that the
+    // contact is hydrodynamic (no elastic flattening) and the flows overflow
+    let u_dim = units::speed_parameter(eta0, u_e, e_red, r);
+    if !(MIN_SPEED_PARAMETER..=MAX_SPEED_PARAMETER).contains(&u_dim) {
+        let k = if s.has("entrainment_speed") {
+            "entrainment_speed"
+        } else {
+            "dimensionless_speed"
+        };
+        return Err(s.err(
+            k,
+            format!(
+                "gives the dimensionless speed U = eta0 u_e/(E' R) = {} (u_e = {} m/s, eta0 = {} Pa s from lubricant.viscosity, E' = {} Pa, R = {} m); the EHL solver is meaningful for U between {} and {}",
+                fmt_num(u_dim), fmt_num(u_e), fmt_num(eta0), fmt_num(e_red), fmt_num(r),
+                fmt_num(MIN_SPEED_PARAMETER), fmt_num(MAX_SPEED_PARAMETER)
+            ),
+        ));
+    }
     let srr = s.finite("slide_to_roll", "dimensionless")?.unwrap_or(0.0);
     if srr.abs() > 2.0 {
         return Err(s.err(
@@ -813,7 +916,8 @@ fn alignment(top: &Sec, point: bool) -> R<Alignment> {
 }
 
 /// `[grid]`, in units of the Hertz half-width `b` (contact radius a for balls).
-fn grid(top: &Sec, kind: Kind, c: Contact, b: f64) -> R<GridSpec> {
+/// `ky`: the Hertz semi-axis along y over the one along x (point contacts; NaN for lines).
+fn grid(top: &Sec, kind: Kind, c: Contact, b: f64, ky: f64) -> R<GridSpec> {
     let empty = Table::new();
     let t = sub(top, "grid", "cell counts and extents")?.unwrap_or(&empty);
     let s = Sec {
@@ -888,7 +992,8 @@ fn grid(top: &Sec, kind: Kind, c: Contact, b: f64) -> R<GridSpec> {
         let ny = s.count("ny", "cells along y", 2)?.unwrap_or(DEFAULT_CELLS);
         let (dlo, dhi) = match c {
             Contact::Line { ulo, uhi, .. } => (ulo / b, uhi / b),
-            Contact::Point { .. } => (-3.0, 3.0),
+            // three semi-axes of the Hertz ellipse each side (the circle: -3 .. 3 a)
+            Contact::Point { .. } => (-3.0 * ky, 3.0 * ky),
         };
         let y_min = s.finite("y_min", "Hertz half-widths")?.unwrap_or(dlo);
         let y_max = s.finite("y_max", "Hertz half-widths")?.unwrap_or(dhi);
@@ -931,21 +1036,23 @@ fn grid(top: &Sec, kind: Kind, c: Contact, b: f64) -> R<GridSpec> {
                 }
             }
             Contact::Point { .. } => {
-                if y_min > -1.0 || y_max < 1.0 {
-                    let k = if y_min > -1.0 { "y_min" } else { "y_max" };
+                // the Hertz ellipse spans y = -a_y .. a_y = -ky .. ky in units of a = a_x
+                let tol = 1e-9 * ky;
+                if y_min > -ky + tol || y_max < ky - tol {
+                    let k = if y_min > -ky + tol { "y_min" } else { "y_max" };
                     return Err(s.err(
                         k,
-                        format!("the grid must contain the whole Hertz contact, y from -a to a: y_min must be -1 or less and y_max 1 or more (in contact radii, {bstr}); found {} .. {}", fmt_num(y_min), fmt_num(y_max)),
+                        format!("the grid must contain the whole Hertz contact, y from -a_y to a_y = {} mm = {} a: y_min must be -{} or less and y_max {} or more (in units of the semi-axis along x, {bstr}); found {} .. {}", mm(ky * b), fmt_num(ky), fmt_num(ky), fmt_num(ky), fmt_num(y_min), fmt_num(y_max)),
                     ));
                 }
-                let across = 2.0 * ny as f64 / (y_max - y_min);
+                let across = 2.0 * ky * ny as f64 / (y_max - y_min);
                 if across < MIN_CELLS_ACROSS_CONTACT {
-                    let need = (MIN_CELLS_ACROSS_CONTACT * (y_max - y_min) / 2.0).ceil();
+                    let need = (MIN_CELLS_ACROSS_CONTACT * (y_max - y_min) / (2.0 * ky)).ceil();
                     return Err(s.err(
                         "ny",
                         format!(
-                            "grid too coarse to resolve the Hertz contact: ny = {ny} cells over y = {} .. {} a put only {:.1} cells across the Hertz contact diameter 2a = {} mm; at least {} are needed. Raise grid.ny to {need} or more",
-                            fmt_num(y_min), fmt_num(y_max), across, mm(2.0 * b), MIN_CELLS_ACROSS_CONTACT
+                            "grid too coarse to resolve the Hertz contact: ny = {ny} cells over y = {} .. {} a put only {:.1} cells across the Hertz contact length 2a_y = {} mm; at least {} are needed. Raise grid.ny to {need} or more",
+                            fmt_num(y_min), fmt_num(y_max), across, mm(2.0 * ky * b), MIN_CELLS_ACROSS_CONTACT
                         ),
                     ));
                 }
@@ -996,9 +1103,21 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
                 Kind::Dry => DEFAULT_DRY_ITERATIONS,
                 Kind::Ehl => DEFAULT_EHL_ITERATIONS,
             }),
-        mirror_levels: s
+        mirror_levels: match s
             .count("mirror_levels", "mirror levels at each roller end", 0)?
-            .unwrap_or(1),
+            .unwrap_or(1)
+        {
+            l if l > crate::run::MAX_MIRROR_LEVELS => {
+                return Err(s.err(
+                    "mirror_levels",
+                    format!(
+                        "at most {} mirror levels, found {l}: from level 12 on one more level changes the maximum pressure by less than 1e-4 relative (the images move one roller length further out per level), while each level costs one more kernel table",
+                        crate::run::MAX_MIRROR_LEVELS
+                    ),
+                ))
+            }
+            l => l,
+        },
         free_end_correction: s.boolean("free_end_correction")?.unwrap_or(true),
         wedge_upwind_order: match s.count("wedge_upwind_order", "upwind order", 1)? {
             None | Some(2) => 2,
@@ -1171,7 +1290,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     );
     let r = units::reduced_radius(body1.radius, body2.radius);
     let alignment = alignment(&top, matches!(c, Contact::Point { .. }))?;
-    let (load, b) = load(&top, c, r, e_red)?;
+    let (load, b, ky) = load(&top, c, r, e_red)?;
 
     let (motion, lubricant, travel) = if kind == Kind::Ehl {
         for (k, what) in [
@@ -1189,7 +1308,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         (None, None, false)
     };
 
-    let grid = grid(&top, kind, c, b)?;
+    let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
     let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
     if features(&top, &grid, b, infinite, travel)? {
@@ -1208,7 +1327,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
                     .into(),
         });
     }
-    Ok(Case {
+    let case = Case {
         title,
         kind,
         body1,
@@ -1219,5 +1338,8 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         lubricant,
         grid,
         solver,
-    })
+    };
+    let (limit, source) = crate::run::memory_limit();
+    crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;
+    Ok(case)
 }

@@ -213,10 +213,46 @@ pub fn unknown_key_message(path: &str) -> String {
             return format!("`{ancestor}` holds a value, not a table, so it has no keys");
         }
     }
+    if path.split('.').any(|seg| seg.trim().is_empty()) {
+        return format!(
+            "`{path}` has an empty or blank key name, which no case-file key has; write keys like `load.force`"
+        );
+    }
     if let Some(s) = suggest(path) {
         return format!("unknown key; did you mean `{s}`?");
     }
-    let (parent, _) = split_parent(path);
+    let (mut parent, _) = split_parent(path);
+    // a path below an unknown table (`a.b.c.d`): name the deepest prefix that is a known table
+    if !parent.is_empty() && !is_known(parent) {
+        let mut known = "";
+        let mut p = parent;
+        while let Some(i) = p.rfind('.') {
+            p = &p[..i];
+            if is_known(p) {
+                known = p;
+                break;
+            }
+        }
+        let first_unknown = if known.is_empty() {
+            parent.split('.').next().unwrap_or(parent)
+        } else {
+            let rest = &parent[known.len() + 1..];
+            rest.split('.').next().unwrap_or(rest)
+        };
+        parent = known;
+        let keys = keys_in(parent);
+        return if parent.is_empty() {
+            format!(
+                "unknown key: a case file has no table `{first_unknown}`; the top level holds: {}",
+                keys.join(", ")
+            )
+        } else {
+            format!(
+                "unknown key: [{parent}] has no sub-table `{first_unknown}`; valid keys in [{parent}]: {}",
+                keys.join(", ")
+            )
+        };
+    }
     let keys = keys_in(parent);
     if parent.is_empty() {
         format!(
@@ -302,6 +338,19 @@ mod tests {
         assert_eq!(suggest("grid.qqqqqqqq"), None);
         assert_eq!(suggest("load.x"), None);
         assert!(unknown_key_message("load.force.x").contains("not a table"));
+    }
+
+    #[test]
+    fn unknown_nested_keys_name_the_deepest_known_table() {
+        let m = unknown_key_message("a.b.c.d.e.f");
+        assert!(m.contains("no table `a`") && m.contains("title"), "{m}");
+        let m = unknown_key_message("grid.qq.zz.ww");
+        assert!(m.contains("[grid] has no sub-table `qq`") && m.contains("nx"), "{m}");
+        assert!(!m.ends_with(": "), "{m}");
+        let m = unknown_key_message("load.");
+        assert!(m.contains("`load.`") && m.contains("empty or blank"), "{m}");
+        let m = unknown_key_message(" ");
+        assert!(m.contains("` `"), "{m}");
     }
 
     #[test]

@@ -63,8 +63,19 @@ fn unlimited_shear_stress(model: &Rheology, eta: f64, shear_rate: f64) -> f64 {
             if newtonian == 0.0 {
                 return 0.0;
             }
-            let x = newtonian / shear_modulus;
-            shear_modulus * x * x.abs().hypot(1.0).powf(power_law_index - 1.0)
+            // x = eta gamma_dot / G_f, formed so that it overflows only when x itself does; for
+            // |x| > 1 the law is written G |x|^n (1 + 1/x^2)^((n-1)/2), which stays finite (or
+            // +inf, which a limiting shear stress then caps) where x (1 + x^2)^((n-1)/2) would
+            // give inf * 0 = NaN once x overflows (a very viscous film at a tiny h)
+            let x = (eta / shear_modulus) * shear_rate;
+            let ax = x.abs();
+            let e = 0.5 * (power_law_index - 1.0);
+            let mag = if ax <= 1.0 {
+                ax * (1.0 + ax * ax).powf(e)
+            } else {
+                ax.powf(power_law_index) * (1.0 + 1.0 / (ax * ax)).powf(e)
+            };
+            shear_modulus * mag.copysign(shear_rate)
         }
         Rheology::Eyring { eyring_stress, .. } => {
             eyring_stress * (newtonian / eyring_stress).asinh()
@@ -150,6 +161,22 @@ mod tests {
                 (tau / power_law - 1.0).abs() < 1e-12,
                 "x {x}: {tau} vs {power_law}"
             );
+        }
+    }
+
+    #[test]
+    fn carreau_with_overflowing_shear_is_capped_not_nan() {
+        // eta gamma_dot overflows f64 (a very viscous film at a tiny h): the Carreau stress is
+        // +inf, not NaN, and a limiting shear stress caps it (the old form gave inf * 0 = NaN)
+        let limited = Rheology::Carreau {
+            shear_modulus: 4.5e6,
+            power_law_index: 0.57,
+            limiting_shear_coefficient: Some(0.06),
+        };
+        for (eta, gd) in [(1e300, 1e100), (1e42, 1e290), (f64::MAX, 1.0)] {
+            assert_eq!(shear_stress(&limited, eta, gd, 1e9), 0.06 * 1e9);
+            assert_eq!(shear_stress(&limited, eta, -gd, 1e9), -0.06 * 1e9);
+            assert!(!shear_stress(&CARREAU, eta, gd, 1e9).is_nan());
         }
     }
 

@@ -69,7 +69,7 @@ fn summary_from(grid: &Grid, fields: &Fields, ph: f64, b: f64) -> Summary {
         converged: true,
         termination: "synthetic fields".into(),
         iterations: 42,
-        residual: 1e-9,
+        residual: Some(1e-9),
         wall_time_s: 0.01,
         load_n: p.iter().sum::<f64>() * grid.cell_area(),
         load_error: 1e-9,
