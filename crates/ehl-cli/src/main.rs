@@ -13,6 +13,9 @@ use std::process::ExitCode;
 
 /// Exit status when the solver stopped without converging (outputs are still written).
 pub const EXIT_NOT_CONVERGED: u8 = 3;
+/// Exit status when pressure and film are solved and written but the friction the case asks
+/// for (slide-to-roll != 0 or a non-Newtonian rheology) could not be computed.
+pub const EXIT_FRICTION_FAILED: u8 = 4;
 
 const EXIT_CODES: &str = "\
 Exit status:
@@ -22,6 +25,9 @@ Exit status:
   2  command-line usage error (unknown option, malformed --vary or --shard, ...)
   3  solved, but the solver did not converge: outputs are written and summary.json
      has converged = false (sweep: at least one point did not converge)
+  4  solved and written, but the friction the case asks for (slide_to_roll != 0 or a
+     non-Newtonian rheology) could not be computed: summary.json has friction_failed
+     = true and a warning, and no friction keys
   130  stopped by Ctrl-C or SIGTERM (temporary folders are removed; an existing
      output folder is left as it was)
   141  standard output was closed by its reader (e.g. `ehl check case.toml | head -1`)";
@@ -193,15 +199,24 @@ fn run(args: RunArgs) -> Result<ExitCode> {
         result_line(&solution.summary),
         dir.display()
     ))?;
-    if solution.summary.converged {
-        Ok(ExitCode::SUCCESS)
-    } else {
+    for w in &solution.summary.warnings {
+        io::err(&format!("warning: {w}"));
+    }
+    if !solution.summary.converged {
         io::err(&format!(
             "warning: the solver did not converge ({}); outputs written to {} with converged = false",
             solution.summary.termination,
             dir.display()
         ));
         Ok(ExitCode::from(EXIT_NOT_CONVERGED))
+    } else if solution.summary.requested_friction_failed() {
+        io::err(&format!(
+            "error: the friction this case asks for (slide-to-roll or a non-Newtonian rheology) could not be computed; pressure and film are written to {} without the friction keys",
+            dir.display()
+        ));
+        Ok(ExitCode::from(EXIT_FRICTION_FAILED))
+    } else {
+        Ok(ExitCode::SUCCESS)
     }
 }
 
