@@ -50,7 +50,11 @@ fn corpus() -> Vec<(String, String)> {
         })
         .collect();
     v.sort();
-    assert!(v.len() >= 10, "expected the shipped examples, found {}", v.len());
+    assert!(
+        v.len() >= 10,
+        "expected the shipped examples, found {}",
+        v.len()
+    );
     v
 }
 
@@ -185,8 +189,8 @@ fn mutant_strategy(examples: usize, text: bool) -> impl Strategy<Value = Mutant>
 /// with one in four drawn from the check pool (extreme, wrong-typed, removed keys).
 fn run_mutant_strategy(examples: usize) -> impl Strategy<Value = Mutant> {
     const FACTORS: &[f64] = &[0.1, 0.3, 0.5, 0.8, 1.25, 2.0, 3.0, 10.0];
-    let plausible = (0usize..10_000, 0..FACTORS.len())
-        .prop_map(|(k, f)| Mutation::Factor(k, FACTORS[f]));
+    let plausible =
+        (0usize..10_000, 0..FACTORS.len()).prop_map(|(k, f)| Mutation::Factor(k, FACTORS[f]));
     let one = proptest::prop_oneof![
         3 => plausible,
         1 => mutation_strategy(false),
@@ -563,7 +567,11 @@ fn ehl_timed(dir: &Path, args: &[&str], limit: Duration) -> Option<(i32, String,
 fn check_cli(text: &str, tally: &mut Tally) {
     tally.mutants += 1;
     let work = common::Work::new(text);
-    match ehl_timed(work.path(), &["check", "case.toml"], Duration::from_secs(30)) {
+    match ehl_timed(
+        work.path(),
+        &["check", "case.toml"],
+        Duration::from_secs(30),
+    ) {
         None => tally.fail(format!("`ehl check` hung (killed after 30 s):\n{text}")),
         Some((code, stdout, stderr)) => match code {
             0 => {
@@ -704,7 +712,10 @@ fn run_cli(text: &str, out_mode: u8, limit: Duration, tally: &Mutex<Tally>) {
     let mut outcome = (0, 0, 0);
     let mut refusal = None;
     match result {
-        None => failures.push(format!("`ehl {}` hung (killed after {limit:?})", args.join(" "))),
+        None => failures.push(format!(
+            "`ehl {}` hung (killed after {limit:?})",
+            args.join(" ")
+        )),
         Some((code, _stdout, stderr)) => {
             if stderr.contains("panicked") || !matches!(code, 0 | 1 | 3 | 4) {
                 failures.push(format!("exit status {code}: {stderr}"));
@@ -740,11 +751,18 @@ fn run_cli(text: &str, out_mode: u8, limit: Duration, tally: &Mutex<Tally>) {
         }
     }
     // the user's files survive, whatever happened
-    if std::fs::read_to_string(work.file("notes.txt")).ok().as_deref() != Some("the user's own notes")
+    if std::fs::read_to_string(work.file("notes.txt"))
+        .ok()
+        .as_deref()
+        != Some("the user's own notes")
     {
         failures.push("the user's notes.txt was lost".into());
     }
-    if std::fs::read_to_string(work.file("mine/data.csv")).ok().as_deref() != Some("1,2,3") {
+    if std::fs::read_to_string(work.file("mine/data.csv"))
+        .ok()
+        .as_deref()
+        != Some("1,2,3")
+    {
         failures.push("the user's mine/data.csv was lost".into());
     }
     if !work.file("case.toml").is_file() {
@@ -841,7 +859,10 @@ fn mutations_change_the_case() {
     // a schema key that the example lacks is created with its parents
     let t: Table = base.parse().unwrap();
     let keys = candidate_keys(&t);
-    let k = keys.iter().position(|k| k == "features[0].pattern.rows").unwrap();
+    let k = keys
+        .iter()
+        .position(|k| k == "features[0].pattern.rows")
+        .unwrap();
     let text = apply(
         base,
         &Mutant {
@@ -849,7 +870,10 @@ fn mutations_change_the_case() {
             mutations: vec![Mutation::Set(k, Val::Other(3))],
         },
     );
-    assert!(text.contains("[features.pattern]") || text.contains("pattern"), "{text}");
+    assert!(
+        text.contains("[features.pattern]") || text.contains("pattern"),
+        "{text}"
+    );
 }
 
 /// The oracle catches what it is meant to catch: a NaN in a written field, a negative film, a
@@ -858,18 +882,26 @@ fn mutations_change_the_case() {
 fn output_scan_finds_nan_and_negative_film() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    std::fs::write(d.join("summary.json"), r#"{"central_film_m": -1e-9, "residual": null}"#)
-        .unwrap();
+    std::fs::write(
+        d.join("summary.json"),
+        r#"{"central_film_m": -1e-9, "residual": null}"#,
+    )
+    .unwrap();
     let mut npz = ndarray_npy::NpzWriter::new(std::fs::File::create(d.join("fields.npz")).unwrap());
-    npz.add_array("pressure", &ndarray::arr1(&[1.0, f64::NAN])).unwrap();
-    npz.add_array("film", &ndarray::arr1(&[f64::INFINITY, -1.0])).unwrap();
+    npz.add_array("pressure", &ndarray::arr1(&[1.0, f64::NAN]))
+        .unwrap();
+    npz.add_array("film", &ndarray::arr1(&[f64::INFINITY, -1.0]))
+        .unwrap();
     npz.finish().unwrap();
     let bad = scan_outputs(d).join("\n");
     assert!(bad.contains("null"), "{bad}");
     assert!(bad.contains("central_film_m"), "{bad}");
     assert!(bad.contains("`pressure` holds NaN"), "{bad}");
     assert!(bad.contains("negative film"), "{bad}");
-    assert!(!bad.contains("`film` holds inf"), "+inf film is the no-material convention: {bad}");
+    assert!(
+        !bad.contains("`film` holds inf"),
+        "+inf film is the no-material convention: {bad}"
+    );
 }
 
 /// The bounded run of the default suite: 3000 mutants through the library's check, 150
@@ -882,11 +914,19 @@ fn fuzz_bounded() {
     lib.assert_clean("check (library)");
     cli.assert_clean("check (binary)");
     // some mutants must pass and some must be refused, or the campaign tests nothing
-    assert!(lib.accepted > 100 && lib.refused > 100, "{}", lib.report("check"));
+    assert!(
+        lib.accepted > 100 && lib.refused > 100,
+        "{}",
+        lib.report("check")
+    );
     let runs = run_campaign(24, seed(), Duration::from_secs(120));
     eprintln!("{}", runs.report("run"));
     runs.assert_clean("run");
-    assert!(runs.accepted + runs.not_converged > 0, "{}", runs.report("run"));
+    assert!(
+        runs.accepted + runs.not_converged > 0,
+        "{}",
+        runs.report("run")
+    );
 }
 
 /// The long run (see the module doc for the command).
@@ -902,12 +942,25 @@ fn fuzz_long() {
     let run = run_campaign(runs, seed(), Duration::from_secs(300));
     let run_time = started.elapsed();
     println!("seed {}", seed());
-    println!("{} ({check_time:.0?} for both check campaigns)", lib.report("check (library)"));
-    println!("{}", cli.report("check (binary, each under a 30 s timeout)"));
-    println!("{} ({run_time:.0?})", run.report("run (binary, each under a 300 s timeout)"));
+    println!(
+        "{} ({check_time:.0?} for both check campaigns)",
+        lib.report("check (library)")
+    );
+    println!(
+        "{}",
+        cli.report("check (binary, each under a 30 s timeout)")
+    );
+    println!(
+        "{} ({run_time:.0?})",
+        run.report("run (binary, each under a 300 s timeout)")
+    );
     println!("most refused keys (check): {}", lib.top_keys(15));
     println!("most refused keys (run): {}", run.top_keys(15));
-    for (what, t) in [("check (library)", &lib), ("check (binary)", &cli), ("run", &run)] {
+    for (what, t) in [
+        ("check (library)", &lib),
+        ("check (binary)", &cli),
+        ("run", &run),
+    ] {
         for f in t.failures.iter().take(5) {
             println!("--- {what} failure:\n{f}");
         }

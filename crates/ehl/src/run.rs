@@ -104,35 +104,24 @@ pub struct MemoryEstimate {
     pub key: &'static str,
 }
 
-/// Next length of the form 2^a 3^b 5^c (the FFT padding of the elastic operator).
-fn fft_len(n: usize) -> usize {
-    let mut m = n.max(1);
-    loop {
-        let mut k = m;
-        for p in [2, 3, 5] {
-            while k % p == 0 {
-                k /= p;
-            }
-        }
-        if k == 1 {
-            return m;
-        }
-        m += 1;
-    }
-}
-
 /// Bytes of one elastic operator on an `nx x ny` grid, while it is built and after: the kernel
 /// spectra (one, two with reflected images) of (px/2+1) x py complex numbers, the scratch of an
 /// application (row spectra, two transposed spectra, real rows) and, during the build, the
 /// padded real table, its row spectra and two (2nx-1)(2ny-1) kernel tables.
 fn operator_bytes(nx: usize, ny: usize, reflected: bool) -> f64 {
-    let px = fft_len(2 * nx - 1).max(2) as f64;
-    let py = if ny == 1 { 1.0 } else { fft_len(2 * ny - 1) as f64 };
+    let px = crate::elastic::operator::fast_len(2 * nx - 1).max(2) as f64;
+    let py = if ny == 1 {
+        1.0
+    } else {
+        crate::elastic::operator::fast_len(2 * ny - 1) as f64
+    };
     let hx = (px / 2.0).floor() + 1.0;
     let (nxf, nyf) = (nx as f64, ny as f64);
     let spectra = (if reflected { 2.0 } else { 1.0 }) * hx * py * 16.0;
     let scratch = nyf * hx * 16.0 + 2.0 * hx * py * 16.0 + nyf * px * 8.0;
-    let build = py * px * 8.0 + py * hx * 16.0 + hx * py * 16.0
+    let build = py * px * 8.0
+        + py * hx * 16.0
+        + hx * py * 16.0
         + 2.0 * (2.0 * nxf - 1.0) * (2.0 * nyf - 1.0).max(1.0) * 8.0;
     spectra + scratch + build
 }
@@ -221,7 +210,11 @@ pub fn check_memory(
     if est.bytes <= limit {
         return Ok(());
     }
-    let kind = if case.kind == Kind::Ehl { "an EHL" } else { "a dry" };
+    let kind = if case.kind == Kind::Ehl {
+        "an EHL"
+    } else {
+        "a dry"
+    };
     Err((
         est.key.to_string(),
         format!(
@@ -673,7 +666,11 @@ mod tests {
         );
         assert!(s.friction_failed && s.friction_coefficient.is_none());
         assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
-        assert!(s.warnings[0].contains("friction not computed"), "{:?}", s.warnings);
+        assert!(
+            s.warnings[0].contains("friction not computed"),
+            "{:?}",
+            s.warnings
+        );
         s.friction_requested = true;
         assert!(s.requested_friction_failed());
         s.friction_requested = false;

@@ -12,8 +12,12 @@ fn examples() -> Vec<(String, String)> {
         .unwrap()
         .filter_map(|e| {
             let p = e.ok()?.path();
-            (p.extension()? == "toml")
-                .then(|| (p.display().to_string(), std::fs::read_to_string(&p).unwrap()))
+            (p.extension()? == "toml").then(|| {
+                (
+                    p.display().to_string(),
+                    std::fs::read_to_string(&p).unwrap(),
+                )
+            })
         })
         .collect();
     v.sort();
@@ -103,7 +107,10 @@ fn extreme_values_are_refused_by_key_or_solve_to_finite_output() {
             }
         }
     }
-    assert!(solved > 10, "the loop should solve some variants, solved {solved}");
+    assert!(
+        solved > 10,
+        "the loop should solve some variants, solved {solved}"
+    );
 }
 
 #[test]
@@ -126,7 +133,12 @@ fn default_domain_contains_the_elliptical_hertz_contact() {
     let s = &sol.summary;
     assert!(s.converged);
     let rel = s.max_pressure_pa / s.hertz_pressure_pa - 1.0;
-    assert!(rel.abs() < 0.03, "p_max {} vs Hertz {}", s.max_pressure_pa, s.hertz_pressure_pa);
+    assert!(
+        rel.abs() < 0.03,
+        "p_max {} vs Hertz {}",
+        s.max_pressure_pa,
+        s.hertz_pressure_pa
+    );
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
 }
 
@@ -138,12 +150,24 @@ fn a_contact_cut_by_the_domain_is_flagged() {
     let case = parse_str(
         &text,
         "b.toml",
-        &["grid.x_min=-1".into(), "grid.x_max=1".into(), "grid.nx=64".into()],
+        &[
+            "grid.x_min=-1".into(),
+            "grid.x_max=1".into(),
+            "grid.nx=64".into(),
+        ],
     )
     .unwrap();
     let s = solve(&case, &Silent).unwrap().summary;
-    assert!(s.warnings.iter().any(|w| w.contains("grid.x_min")), "{:?}", s.warnings);
-    assert!(s.warnings.iter().any(|w| w.contains("grid.x_max")), "{:?}", s.warnings);
+    assert!(
+        s.warnings.iter().any(|w| w.contains("grid.x_min")),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        s.warnings.iter().any(|w| w.contains("grid.x_max")),
+        "{:?}",
+        s.warnings
+    );
     // a roller whose grid ends at its free ends: the end peaks are not flagged
     let text = example("dry_roller_mirror1.toml");
     let s = solve(&parse_str(&text, "r.toml", &[]).unwrap(), &Silent)
@@ -151,7 +175,10 @@ fn a_contact_cut_by_the_domain_is_flagged() {
         .summary;
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
     let json = serde_json::to_value(&s).unwrap();
-    assert!(json["warnings"].as_array().unwrap().is_empty(), "always written");
+    assert!(
+        json["warnings"].as_array().unwrap().is_empty(),
+        "always written"
+    );
 }
 
 #[test]
@@ -168,7 +195,10 @@ fn summaries_hold_no_placeholders() {
     if let Some(r) = s.residual {
         assert!(r.is_finite() && r < 1e300, "{r}");
     }
-    for h in [s.central_film_m, s.min_film_m, s.centerline_min_film_m].into_iter().flatten() {
+    for h in [s.central_film_m, s.min_film_m, s.centerline_min_film_m]
+        .into_iter()
+        .flatten()
+    {
         assert!(h >= 0.0, "{h}");
     }
     // a dry summary has no film keys
@@ -185,6 +215,9 @@ fn mirror_levels_and_memory_are_bounded() {
     let e = parse_str(&text, "m.toml", &["solver.mirror_levels=1000000000".into()])
         .unwrap_err()
         .to_string();
-    assert!(e.contains("solver.mirror_levels") && e.contains("16"), "{e}");
+    assert!(
+        e.contains("solver.mirror_levels") && e.contains("16"),
+        "{e}"
+    );
     assert!(parse_str(&text, "m.toml", &["solver.mirror_levels=16".into()]).is_ok());
 }

@@ -242,12 +242,26 @@ mod tests {
         assert!(out_of_range("1e999").unwrap().contains("out of range"));
         assert!(out_of_range("-1.5E+400").unwrap().contains("out of range"));
         assert!(out_of_range("1e-999").unwrap().contains("out of range"));
-        for ok in ["1e300", "0", "0.0e-999", "inf", "-inf", "nan", "ehl", "\"1e999\""] {
+        for ok in [
+            "1e300",
+            "0",
+            "0.0e-999",
+            "inf",
+            "-inf",
+            "nan",
+            "ehl",
+            "\"1e999\"",
+        ] {
             assert_eq!(out_of_range(ok), None, "{ok}");
         }
         let mut t: Table = "kind = \"dry\"".parse().unwrap();
-        let e = apply(&mut t, "load.force=1e999", "c.toml").unwrap_err().to_string();
-        assert!(e.contains("load.force") && e.contains("out of range"), "{e}");
+        let e = apply(&mut t, "load.force=1e999", "c.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("load.force") && e.contains("out of range"),
+            "{e}"
+        );
         assert!(!e.contains("without quotes"), "{e}");
     }
 

@@ -345,7 +345,10 @@ mod tests {
         let m = unknown_key_message("a.b.c.d.e.f");
         assert!(m.contains("no table `a`") && m.contains("title"), "{m}");
         let m = unknown_key_message("grid.qq.zz.ww");
-        assert!(m.contains("[grid] has no sub-table `qq`") && m.contains("nx"), "{m}");
+        assert!(
+            m.contains("[grid] has no sub-table `qq`") && m.contains("nx"),
+            "{m}"
+        );
         assert!(!m.ends_with(": "), "{m}");
         let m = unknown_key_message("load.");
         assert!(m.contains("`load.`") && m.contains("empty or blank"), "{m}");

@@ -46,8 +46,8 @@
 //! residual.
 
 use crate::elastic::Deflection;
-use crate::grid::Grid;
 use crate::geometry::GapSampler;
+use crate::grid::Grid;
 
 /// Solver settings.
 #[derive(Debug, Clone)]

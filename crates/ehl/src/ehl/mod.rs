@@ -27,8 +27,8 @@ mod system;
 
 use crate::case::Lubricant;
 use crate::elastic::Deflection;
-use crate::grid::Grid;
 use crate::geometry::GapSampler;
+use crate::grid::Grid;
 use crate::reference::film;
 use crate::reynolds::gmres::{gmres, norm, GmresWork};
 use crate::reynolds::residual;

@@ -36,8 +36,8 @@
 use crate::case::{DensityModel, Lubricant};
 use crate::elastic::operator::min_len;
 use crate::elastic::Deflection;
-use crate::grid::Grid;
 use crate::geometry::GapSampler;
+use crate::grid::Grid;
 use crate::lubricant::{density, viscosity};
 use crate::reynolds::multigrid::{LineMultigrid, LineOperator};
 use crate::reynolds::residual::{self, Fields, ReynoldsGrid};

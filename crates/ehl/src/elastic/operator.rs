@@ -90,7 +90,7 @@ pub(crate) fn images(img: &EndImages) -> Vec<(f64, f64, f64)> {
 }
 
 /// Next length >= n whose only prime factors are 2, 3 and 5 (fast FFT sizes).
-fn fast_len(n: usize) -> usize {
+pub(crate) fn fast_len(n: usize) -> usize {
     let mut m = n.max(1);
     loop {
         let mut k = m;

@@ -137,7 +137,11 @@ mod tests {
                     1 => -1e-7,
                     _ => 0.0,
                 };
-                assert!((v[k] - base[k] - want).abs() < 1e-18, "({i}, {j}): {}", v[k] - base[k]);
+                assert!(
+                    (v[k] - base[k] - want).abs() < 1e-18,
+                    "({i}, {j}): {}",
+                    v[k] - base[k]
+                );
             }
         }
         // the bump closes the gap: nothing clips it
