@@ -965,6 +965,16 @@ fn fuzz_long() {
             println!("--- {what} failure:\n{f}");
         }
     }
+    let all: Vec<&String> = [&lib, &cli, &run]
+        .iter()
+        .flat_map(|t| t.failures.iter())
+        .collect();
+    if !all.is_empty() {
+        let path = std::env::temp_dir().join("ehl-fuzz-failures.txt");
+        let text: Vec<&str> = all.iter().map(|s| s.as_str()).collect();
+        let _ = std::fs::write(&path, text.join("\n=====\n"));
+        println!("all {} failures: {}", all.len(), path.display());
+    }
     lib.assert_clean("check (library)");
     cli.assert_clean("check (binary)");
     run.assert_clean("run");

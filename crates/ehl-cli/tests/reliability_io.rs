@@ -246,6 +246,13 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
     );
     assert_eq!(names(&w.file("mine")), ["case.toml", "notes.txt"]);
     assert_eq!(names(w.path()), ["case.toml", "mine"]);
+    // the current folder and a parent given as `.` or `dir/..` are folders like any other
+    for out in [".", "mine/.."] {
+        let o = w.ehl(&["run", "case.toml", "--out", out]);
+        assert_eq!(o.code, 1, "--out {out}: {}", o.stderr);
+        assert!(o.stderr.contains("did not write"), "--out {out}: {}", o.stderr);
+        assert_eq!(names(w.path()), ["case.toml", "mine"], "--out {out}");
+    }
 
     // an empty folder is used, and then holds the marker: a second run replaces it
     std::fs::create_dir(w.file("empty")).unwrap();

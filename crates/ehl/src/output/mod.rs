@@ -356,7 +356,12 @@ pub fn clean_stale(parent: &Path, name: &str) {
 fn parent_and_name(dir: &Path) -> Result<(PathBuf, String)> {
     let name = dir
         .file_name()
-        .ok_or_else(|| io_err(dir, "the output folder needs a name (not `..` or `/`)"))?
+        .ok_or_else(|| {
+            io_err(
+                dir,
+                "an output folder (--out) needs a name of its own, e.g. --out out/case; the root folder cannot be one",
+            )
+        })?
         .to_string_lossy()
         .into_owned();
     let parent = match dir.parent() {
@@ -443,6 +448,17 @@ impl OutputLock {
     /// folders. Errors: another process holds the lock ("another ehl process is writing
     /// DIR"), the folder is not ehl's, a parent is a file or cannot be written.
     pub fn acquire(dir: &Path) -> Result<OutputLock> {
+        // `.`, `..` or `a/..` name an existing folder without a last component: use its real
+        // path, so that it is judged like any other folder (the marker rule refuses it unless
+        // ehl wrote it)
+        let resolved;
+        let dir = match (dir.file_name(), std::fs::canonicalize(dir)) {
+            (None, Ok(real)) if real.file_name().is_some() => {
+                resolved = real;
+                resolved.as_path()
+            }
+            _ => dir,
+        };
         let (parent, name) = parent_and_name(dir)?;
         if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
             return Err(io_err(
