@@ -446,18 +446,13 @@ fn shape_specific_keys() {
 }
 
 #[test]
-fn features_outside_the_domain_then_unsupported() {
+fn features_outside_the_domain() {
     let pit = "[[features]]\nkind = \"pit\"\nbody = 1\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\nx = 0.0\ny = 0.0\n";
+    // inside the domain, a dry contact with a pit solves
     let w = Work::new(&(DRY.to_string() + pit));
     let o = w.ehl(&["run", "case.toml"]);
-    assert_eq!(o.code, 1);
-    assert!(
-        o.stderr
-            .starts_with("error: case.toml: features: surface features are not built yet"),
-        "{}",
-        o.stderr
-    );
-    assert!(w.no_outputs());
+    assert!(o.code == 0 || o.code == 3, "{}", o.stderr);
+    assert!(w.file("out/case/summary.json").is_file());
     // 5 mm is far outside the grid (x within +-1.5 b, b = 0.66 mm)
     Work::new(&(DRY.to_string() + &pit.replace("x = 0.0", "x = 5e-3"))).expect_error(
         &[],

@@ -243,7 +243,28 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
     let grid = geometry.grid();
     let hertz = geometry.hertz();
     let factory = operator_factory(case, &geometry);
-    let gap = |x: f64, y: f64| geometry.gap(x, y);
+    let smooth = |x: f64, y: f64| geometry.gap(x, y);
+    // each body's features, at their t = 0 positions (a steady run: see case validation)
+    let surfaces: Vec<crate::surface::Surface> = [1u8, 2]
+        .iter()
+        .map(|&k| {
+            crate::surface::Surface::new(
+                case.features
+                    .iter()
+                    .filter(|f| f.body == k)
+                    .map(|f| f.feature.clone())
+                    .collect(),
+            )
+        })
+        .collect();
+    let gap = crate::geometry::GapWithFeatures {
+        smooth: &smooth,
+        surfaces: surfaces
+            .iter()
+            .filter(|s| !s.features.is_empty())
+            .map(|s| (s, 0.0))
+            .collect(),
+    };
     let load = if case.is_infinite_line() {
         case.load.force_per_length
     } else {

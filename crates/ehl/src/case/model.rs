@@ -189,6 +189,23 @@ pub struct Case {
     pub lubricant: Option<Lubricant>,
     pub grid: GridSpec,
     pub solver: SolverSpec,
+    /// `[[features]]`: surface features, each on its body (empty: smooth surfaces)
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub features: Vec<FeatureSpec>,
+}
+
+/// One resolved `[[features]]` table: the feature as the solver samples it, on its body.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FeatureSpec {
+    /// the table as the case file gives it, with `body` filled in (for the resolved case)
+    #[serde(flatten)]
+    pub table: toml::Table,
+    /// the body whose surface carries the feature: 1 or 2
+    #[serde(skip)]
+    pub body: u8,
+    /// the feature's shape, centre and pattern (SI), with a height map's data loaded
+    #[serde(skip)]
+    pub feature: crate::surface::Feature,
 }
 
 impl Case {

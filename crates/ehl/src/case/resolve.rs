@@ -44,7 +44,7 @@ const PROFILE_KINDS: &[&str] = &[
     "chamfer",
 ];
 const RHEOLOGY_MODELS: &[&str] = &["newtonian", "carreau", "eyring"];
-const FEATURE_KINDS: &[&str] = &["pit", "dent", "height-map"];
+const FEATURE_KINDS: &[&str] = &["pit", "dent", "waviness", "height-map"];
 const LOAD_FORMS: &[&str] = &[
     "force",
     "max_hertz_pressure",
@@ -1134,10 +1134,12 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
     })
 }
 
-/// `[[features]]`: validated, then checked to lie inside the grid. Returns whether any exist.
-fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<bool> {
+/// `[[features]]`: validated, loaded (a height map's `.npy` file, relative to the case file's
+/// folder) and checked to lie inside the grid.
+fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<Vec<FeatureSpec>> {
+    use crate::surface::{Feature, FeatureShape, HeightMap, Pattern};
     let Some(v) = top.get("features") else {
-        return Ok(false);
+        return Ok(Vec::new());
     };
     let items = match v {
         Value::Array(items) => items,
@@ -1156,6 +1158,7 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
     };
     let (xlo, xhi) = (g.x_min * b, g.x_max * b);
     let (ylo, yhi) = (g.y_min * b, g.y_max * b);
+    let mut out = Vec::with_capacity(items.len());
     for (i, item) in items.iter().enumerate() {
         let path = format!("features[{i}]");
         let Value::Table(t) = item else {
@@ -1174,45 +1177,133 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
             s.choice("kind", FEATURE_KINDS)?,
             &s,
             "kind",
-            "the feature kind: \"pit\", \"dent\" or \"height-map\"",
+            "the feature kind: \"pit\", \"dent\", \"waviness\" or \"height-map\"",
         )?;
-        if let Some(body) = s.int("body", "1 or 2")? {
-            if body != 1 && body != 2 {
+        let body = match s.int("body", "1 or 2")? {
+            None => 1,
+            Some(b @ (1 | 2)) => b as u8,
+            Some(b) => {
                 return Err(s.err(
                     "body",
-                    format!("must be 1 or 2 (the body that carries the feature), found {body}"),
-                ));
+                    format!("must be 1 or 2 (the body that carries the feature), found {b}"),
+                ))
             }
-        }
+        };
         let x = s.finite("x", "m")?.unwrap_or(0.0);
         let y = s.finite("y", "m")?.unwrap_or(0.0);
-        let (w, l) = if kind == "height-map" {
-            for k in ["width", "length", "depth", "pattern"] {
-                forbid(
-                    &s,
+        // a length along y may be inf (a groove); widths and lengths are positive
+        let extent = |k: &str, allow_inf: bool, what: &str| -> R<f64> {
+            let v = s.required_num(k, "m", what)?;
+            if !(v > 0.0) || (v.is_infinite() && !allow_inf) {
+                return Err(s.err(
                     k,
-                    "is not used by a height-map feature (it has file, dx, dy, x, y)",
-                )?;
+                    format!(
+                        "must be a positive{} length in m, found {}",
+                        if allow_inf { " (or inf)" } else { ", finite" },
+                        fmt_num(v)
+                    ),
+                ));
             }
-            required(
-                s.string("file", "path of a .npy height map")?,
-                &s,
-                "file",
-                "the height map file (.npy, heights in m)",
-            )?;
-            s.required_positive("dx", "m", "the height map's spacing along x in m")?;
-            s.required_positive("dy", "m", "the height map's spacing along y in m")?;
-            (0.0, 0.0)
-        } else {
-            for k in ["file", "dx", "dy"] {
-                forbid(&s, k, "is only used by kind = \"height-map\"")?;
-            }
-            let w = s.required_positive("width", "m", "the feature's width along x in m")?;
-            let l = s.required_positive("length", "m", "the feature's length along y in m")?;
-            s.required_positive("depth", "m", "the feature's depth in m")?;
-            (w, l)
+            Ok(v)
         };
-        let (mut hx, mut hy) = (0.5 * w, 0.5 * l);
+        let shape = match kind {
+            "height-map" => {
+                for k in ["width", "length", "depth", "pattern", "amplitude", "wavelength"] {
+                    forbid(
+                        &s,
+                        k,
+                        "is not used by a height-map feature (it has file, dx, dy, x, y)",
+                    )?;
+                }
+                let name = required(
+                    s.string("file", "path of a .npy height map")?,
+                    &s,
+                    "file",
+                    "the height map file (.npy, a 2D array of depths in m, rows along y)",
+                )?;
+                let dx = s.required_positive("dx", "m", "the height map's spacing along x in m")?;
+                let dy = s.required_positive("dy", "m", "the height map's spacing along y in m")?;
+                let base = std::path::Path::new(top.file)
+                    .parent()
+                    .unwrap_or(std::path::Path::new(""));
+                let at = base.join(name);
+                let depths: ndarray::Array2<f64> = ndarray_npy::read_npy(&at).map_err(|e| {
+                    s.err(
+                        "file",
+                        format!(
+                            "cannot read `{}` as a 2D .npy array of float64 depths (m): {e}",
+                            at.display()
+                        ),
+                    )
+                })?;
+                FeatureShape::HeightMap(HeightMap { depths, dx, dy })
+            }
+            "waviness" => {
+                for k in ["width", "length", "depth", "pattern", "file", "dx", "dy"] {
+                    forbid(
+                        &s,
+                        k,
+                        "is not used by a waviness (it covers the whole body: amplitude, wavelength, x)",
+                    )?;
+                }
+                FeatureShape::Waviness {
+                    amplitude: s.required_finite(
+                        "amplitude",
+                        "m",
+                        "the waviness amplitude in m, e.g. amplitude = 0.1e-6",
+                    )?,
+                    wavelength: s.required_positive(
+                        "wavelength",
+                        "m",
+                        "the waviness wavelength in m, e.g. wavelength = 0.5e-3",
+                    )?,
+                }
+            }
+            _ => {
+                for k in ["file", "dx", "dy", "amplitude", "wavelength"] {
+                    forbid(&s, k, "is used only by kind = \"height-map\" or \"waviness\"")?;
+                }
+                let width = extent("width", false, "the feature's width along x in m")?;
+                let length = if kind == "dent" && !s.has("length") {
+                    width
+                } else {
+                    extent(
+                        "length",
+                        true,
+                        "the feature's length along y in m (inf for a transverse groove)",
+                    )?
+                };
+                let depth = s.required_finite(
+                    "depth",
+                    "m",
+                    "the feature's depth in m (positive: a pit; negative: a bump)",
+                )?;
+                if kind == "pit" {
+                    FeatureShape::Pit {
+                        width,
+                        length,
+                        depth,
+                    }
+                } else {
+                    FeatureShape::Dent {
+                        width,
+                        length,
+                        depth,
+                    }
+                }
+            }
+        };
+        let (mut hx, mut hy) = match &shape {
+            FeatureShape::Pit { width, length, .. } | FeatureShape::Dent { width, length, .. } => {
+                (0.5 * width, 0.5 * length)
+            }
+            FeatureShape::HeightMap(m) => (
+                0.5 * (m.depths.ncols().max(1) - 1) as f64 * m.dx,
+                0.5 * (m.depths.nrows().max(1) - 1) as f64 * m.dy,
+            ),
+            FeatureShape::Waviness { .. } => (0.0, 0.0),
+        };
+        let mut pattern = None;
         if let Some(pt) = s.table("pattern", "{ rows, columns, row_pitch, column_pitch }")? {
             let key = s.key("pattern");
             let p = Sec {
@@ -1236,10 +1327,23 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
                     "the centre-to-centre spacing of the columns along y in m",
                 ));
             }
+            if rows.saturating_mul(cols) > 10_000 {
+                return Err(p.err(
+                    "rows",
+                    format!("a pattern of {rows} x {cols} copies is more than the 10000 this program accepts"),
+                ));
+            }
             hx += 0.5 * (rows - 1) as f64 * rp.unwrap_or(0.0);
             hy += 0.5 * (cols - 1) as f64 * cp.unwrap_or(0.0);
+            pattern = Some(Pattern {
+                rows,
+                columns: cols,
+                row_pitch: rp.unwrap_or(0.0),
+                column_pitch: cp.unwrap_or(0.0),
+            });
         }
-        if !travel && (x - hx < xlo || x + hx > xhi) {
+        let localized = !matches!(shape, FeatureShape::Waviness { .. });
+        if localized && !travel && (x - hx < xlo || x + hx > xhi) {
             return Err(s.err(
                 "x",
                 format!(
@@ -1248,7 +1352,7 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
                 ),
             ));
         }
-        if !infinite && (y - hy < ylo || y + hy > yhi) {
+        if localized && hy.is_finite() && !infinite && (y - hy < ylo || y + hy > yhi) {
             return Err(s.err(
                 "y",
                 format!(
@@ -1257,8 +1361,20 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
                 ),
             ));
         }
+        let mut feature = Feature::new(shape, (x, y));
+        if let Some(p) = pattern {
+            feature = feature.with_pattern(p);
+        }
+        feature.check().map_err(|m| s.err("kind", m))?;
+        let mut table = t.clone();
+        table.insert("body".into(), Value::Integer(body as i64));
+        out.push(FeatureSpec {
+            table,
+            body,
+            feature,
+        });
     }
-    Ok(!items.is_empty())
+    Ok(out)
 }
 
 /// Validates the whole tree (unknown keys already rejected) into a [`Case`].
@@ -1311,12 +1427,23 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
     let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
-    if features(&top, &grid, b, infinite, travel)? {
-        return Err(Error::Unsupported {
-            file: file.to_string(),
-            key: "features".into(),
-            message: "surface features are not built yet; remove the [[features]] tables to solve the smooth contact".into(),
-        });
+    let features = features(&top, &grid, b, infinite, travel)?;
+    if let Some(m) = &motion {
+        // a steady run is exact only for features on a body that stands still
+        for (i, f) in features.iter().enumerate() {
+            let u = if f.body == 1 { m.u1() } else { m.u2() };
+            if u != 0.0 && !travel {
+                return Err(Error::Unsupported {
+                    file: file.to_string(),
+                    key: format!("features[{i}].body"),
+                    message: format!(
+                        "a feature on a moving surface (body {} moves at {} m/s) makes the film transient, and transient runs (motion.travel) are not built yet; a steady run with features is exact when their body stands still: slide_to_roll = 2 stops body 2, -2 stops body 1",
+                        f.body,
+                        fmt_num(u)
+                    ),
+                });
+            }
+        }
     }
     if travel {
         return Err(Error::Unsupported {
@@ -1338,6 +1465,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         lubricant,
         grid,
         solver,
+        features,
     };
     let (limit, source) = crate::run::memory_limit();
     crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;

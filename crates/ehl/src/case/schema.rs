@@ -76,6 +76,8 @@ const OTHER_KEYS: &[&str] = &[
     "features[].file",
     "features[].dx",
     "features[].dy",
+    "features[].amplitude",
+    "features[].wavelength",
     "grid",
     "grid.nx",
     "grid.ny",

@@ -363,16 +363,67 @@ fn rheology_and_profiles() {
 }
 
 #[test]
-fn features_checked_then_refused() {
+fn features_are_resolved_and_checked() {
+    use crate::surface::FeatureShape;
     let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\n";
-    let (k, m) = err(&(ROLLERS.to_string() + pit), &[]);
-    assert_eq!(k, "features");
-    assert!(m.contains("not built yet"), "{m}");
+    let c = parse(&(ROLLERS.to_string() + pit), &[]).unwrap();
+    assert_eq!(c.features.len(), 1);
+    assert_eq!(c.features[0].body, 1);
+    assert_eq!(
+        c.features[0].feature.shape,
+        FeatureShape::Pit {
+            width: 0.1e-3,
+            length: 0.5e-3,
+            depth: 2.5e-8
+        }
+    );
+    // a groove (length = inf) and a ridge (negative depth) are features too
+    let c = parse(
+        &(ROLLERS.to_string() + pit),
+        &["features[0].length=inf", "features[0].depth=-1e-7", "features[0].body=2"],
+    )
+    .unwrap();
+    assert_eq!(c.features[0].body, 2);
+    assert!(matches!(c.features[0].feature.shape, FeatureShape::Pit { length, depth, .. } if length.is_infinite() && depth == -1e-7));
+    // a dent's length defaults to its width; a waviness needs amplitude and wavelength only
+    let dent = "\n[[features]]\nkind = \"dent\"\nwidth = 0.2e-3\ndepth = 1e-7\n";
+    let c = parse(&(ROLLERS.to_string() + dent), &[]).unwrap();
+    assert!(matches!(c.features[0].feature.shape, FeatureShape::Dent { width, length, .. } if width == length));
+    let wav = "\n[[features]]\nkind = \"waviness\"\namplitude = 1e-7\nwavelength = 0.3e-3\n";
+    let c = parse(&(ROLLERS.to_string() + wav), &[]).unwrap();
+    assert!(matches!(c.features[0].feature.shape, FeatureShape::Waviness { .. }));
+    let (k, _) = err(&(ROLLERS.to_string() + wav), &["features[0].depth=1e-7"]);
+    assert_eq!(k, "features[0].depth");
+    let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].width=inf"]);
+    assert_eq!(k, "features[0].width");
     let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].x=0.01"]);
     assert_eq!(k, "features[0].x");
     assert!(m.contains("outside the grid"), "{m}");
     let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].y=-0.0019"]);
     assert_eq!(k, "features[0].y");
+    let (k, m) = err(
+        &(ROLLERS.to_string() + "\n[[features]]\nkind = \"height-map\"\nfile = \"nowhere.npy\"\ndx = 1e-5\ndy = 1e-5\n"),
+        &[],
+    );
+    assert_eq!(k, "features[0].file");
+    assert!(m.contains("nowhere.npy"), "{m}");
+}
+
+#[test]
+fn features_on_a_moving_surface_wait_for_transient_runs() {
+    let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\nbody = 2\n";
+    let (k, m) = err(&(EHL.to_string() + pit), &[]);
+    assert_eq!(k, "features[0].body");
+    assert!(m.contains("transient") && m.contains("slide_to_roll = 2"), "{m}");
+    // body 2 standing still (SRR = 2): a steady problem
+    let c = parse(&(EHL.to_string() + pit), &["motion.slide_to_roll=2"]).unwrap();
+    assert_eq!(c.features.len(), 1);
+    // body 1 moves at 2 u_e then
+    let (k, _) = err(
+        &(EHL.to_string() + pit),
+        &["motion.slide_to_roll=2", "features[0].body=1"],
+    );
+    assert_eq!(k, "features[0].body");
 }
 
 #[test]

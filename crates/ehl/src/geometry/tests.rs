@@ -68,6 +68,7 @@ pub(crate) fn case(body1: Body, body2: Body, force: f64) -> Case {
             free_end_correction: false,
             wedge_upwind_order: 2,
         },
+        features: Vec::new(),
     }
 }
 

@@ -54,6 +54,7 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
             free_end_correction: false,
             wedge_upwind_order: 2,
         },
+        features: Vec::new(),
     }
 }
 

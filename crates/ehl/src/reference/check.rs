@@ -324,6 +324,7 @@ mod tests {
                 free_end_correction: true,
                 wedge_upwind_order: 2,
             },
+            features: Vec::new(),
         }
     }
 

@@ -1,0 +1,173 @@
+//! Surface features in steady runs (dry contact, and EHL with the features on a body that stands
+//! still): identities, symmetry, complementarity and conservation checks.
+
+use ehl::case::parse_str;
+use ehl::run::{solve, Silent};
+use ehl::solution::Solution;
+
+/// Thesis Table 1.1 rollers (R1 = R2 = 10 mm, L = 4 mm, 30 kN; b = 0.66 mm) on a 48 x 48 grid.
+const DRY: &str = r#"
+kind = "dry"
+[body1]
+shape = "roller"
+radius = 0.01
+length = 4e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[body2]
+shape = "roller"
+radius = 0.01
+length = 4e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[load]
+force = 30000.0
+[grid]
+nx = 48
+ny = 48
+[solver]
+tolerance = 1e-9
+"#;
+
+/// Thesis ch. 2 rollers, body 2 standing still (SRR = 2: u1 = 2 u_e, u2 = 0).
+const EHL: &str = r#"
+kind = "ehl"
+[body1]
+shape = "roller"
+radius = 0.06
+length = 9.5e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[body2]
+shape = "roller"
+radius = 0.06
+length = 9.5e-3
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+[load]
+force = 6000.0
+[motion]
+entrainment_speed = 2.7
+slide_to_roll = 2.0
+[lubricant]
+viscosity = 0.04
+pressure_viscosity_coefficient = 15.9e-9
+density = 846.0
+[grid]
+nx = 96
+ny = 32
+"#;
+
+fn pit(body: u8, width: f64, length: f64, depth: f64, x: f64, y: f64) -> String {
+    format!(
+        "\n[[features]]\nkind = \"pit\"\nbody = {body}\nwidth = {width:e}\nlength = {length:e}\ndepth = {depth:e}\nx = {x:e}\ny = {y:e}\n"
+    )
+}
+
+fn run(text: &str) -> Solution {
+    let case = parse_str(text, "case.toml", &[]).expect("valid case");
+    solve(&case, &Silent).expect("solved")
+}
+
+#[test]
+fn zero_depth_features_reproduce_the_smooth_solution() {
+    let smooth = run(DRY);
+    let zero = run(&(DRY.to_string() + &pit(1, 0.4e-3, 1e-3, 0.0, 0.0, 0.0)));
+    assert_eq!(smooth.fields.pressure, zero.fields.pressure);
+    let smooth = run(EHL);
+    let zero = run(&(EHL.to_string() + &pit(2, 0.2e-3, 1e-3, 0.0, 0.0, 0.0)));
+    assert!(smooth.summary.converged);
+    assert_eq!(smooth.fields.pressure, zero.fields.pressure);
+    assert_eq!(smooth.fields.film, zero.fields.film);
+}
+
+/// A pit much deeper than the local elastic deflection (50 um against ~7 um for a 2 GPa strip
+/// 0.4 mm wide) carries no pressure (the contact condition p = 0 where the gap stays open), the
+/// load moves to the rest of the contact, and the maximum pressure rises at the pit's edges.
+#[test]
+fn a_deep_pit_carries_no_pressure_in_dry_contact() {
+    let (w, l) = (0.4e-3, 1.0e-3);
+    let s = run(&(DRY.to_string() + &pit(1, w, l, 50e-6, 0.0, 0.0)));
+    let smooth = run(DRY);
+    assert!(s.summary.converged, "{}", s.summary.termination);
+    let g = s.grid;
+    let pmax = s.summary.max_pressure_pa;
+    let mut inside = 0;
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            // cells wholly inside the pit
+            let (x0, x1) = (g.x(i) - 0.5 * g.dx, g.x(i) + 0.5 * g.dx);
+            let (y0, y1) = (g.y(j) - 0.5 * g.dy, g.y(j) + 0.5 * g.dy);
+            if x0 >= -0.5 * w && x1 <= 0.5 * w && y0 >= -0.5 * l && y1 <= 0.5 * l {
+                inside += 1;
+                assert!(s.fields.pressure[g.idx(i, j)] <= 1e-9 * pmax, "({i}, {j})");
+            }
+        }
+    }
+    assert!(inside >= 20, "{inside} cells inside the pit");
+    // the load is still carried (solver tolerance 1e-9), by a higher peak
+    assert!(s.summary.load_error < 1e-6, "{}", s.summary.load_error);
+    assert!(pmax > 1.05 * smooth.summary.max_pressure_pa);
+}
+
+/// Two pits placed symmetrically about the roller's mid-length give a pressure field symmetric
+/// under y -> -y (the grid, the rollers and their end images are symmetric).
+#[test]
+fn symmetric_pits_give_a_symmetric_pressure() {
+    let text = DRY.to_string()
+        + &pit(1, 0.3e-3, 0.4e-3, 2e-6, 0.1e-3, 1.0e-3)
+        + &pit(2, 0.3e-3, 0.4e-3, 2e-6, 0.1e-3, -1.0e-3);
+    let s = run(&text);
+    let g = s.grid;
+    let p = &s.fields.pressure;
+    let pmax = s.summary.max_pressure_pa;
+    let smooth = run(DRY);
+    let mut changed = 0.0f64;
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let (a, b) = (p[g.idx(i, j)], p[g.idx(i, g.ny - 1 - j)]);
+            assert!((a - b).abs() < 1e-6 * pmax, "({i}, {j}): {a} vs {b}");
+            changed = changed.max((a - smooth.fields.pressure[g.idx(i, j)]).abs());
+        }
+    }
+    // and the pits do change the pressure (a test on the smooth field would pass trivially)
+    assert!(changed > 0.05 * pmax, "{changed}");
+}
+
+/// A bump (negative depth) is not clipped: it raises the pressure over it (by ~5 % here, a
+/// 1 um bump 0.3 b wide under a 10 GPa Hertz pressure). A gap clamped at zero, as before the
+/// features were built, would leave the pressure unchanged.
+#[test]
+fn a_bump_raises_the_pressure() {
+    let s = run(&(DRY.to_string() + &pit(1, 0.2e-3, 0.4e-3, -1e-6, 0.0, 0.0)));
+    let smooth = run(DRY);
+    let g = s.grid;
+    let k = g.idx(g.nx / 2, g.ny / 2);
+    assert!(
+        s.fields.pressure[k] > 1.02 * smooth.fields.pressure[k],
+        "{} vs {}",
+        s.fields.pressure[k],
+        smooth.fields.pressure[k]
+    );
+}
+
+/// EHL with a pit on the standing body: converges, balances the load and conserves mass
+/// (inflow = outflow + side leakage, the solver's tolerance being on that balance).
+#[test]
+fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
+    let s = run(&(EHL.to_string() + &pit(2, 0.2e-3, 1e-3, 0.5e-6, 0.0, 0.0)));
+    let smooth = run(EHL);
+    assert!(s.summary.converged, "{}", s.summary.termination);
+    assert!(s.summary.load_error < 1e-4, "{}", s.summary.load_error);
+    let (i, o, l) = (
+        s.summary.mass_inflow_kg_s.unwrap(),
+        s.summary.mass_outflow_kg_s.unwrap(),
+        s.summary.side_leakage_kg_s.unwrap(),
+    );
+    assert!((i - o - l).abs() < 1e-3 * i, "in {i}, out {o}, side {l}");
+    // the pit changes the film where it sits
+    let g = s.grid;
+    let k = g.idx(g.nx * 4 / 11, g.ny / 2); // x near 0 on x = -4 .. 1.5 b
+    let (h, h0) = (s.fields.film.as_ref().unwrap()[k], smooth.fields.film.as_ref().unwrap()[k]);
+    assert!((h - h0).abs() > 1e-9, "{h} vs {h0}");
+}
