@@ -171,3 +171,41 @@ fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
     let (h, h0) = (s.fields.film.as_ref().unwrap()[k], smooth.fields.film.as_ref().unwrap()[k]);
     assert!((h - h0).abs() > 1e-9, "{h} vs {h0}");
 }
+
+/// A measured surface read from a `.npy` file beside the case: a 2 x 2 map of one depth spanning
+/// w x l is, by its bilinear interpolation, exactly a flat-bottomed pit w x l, so both give the
+/// same contact (the map's file, read relative to the case file's folder, and its spacings are
+/// checked).
+#[test]
+fn a_height_map_file_equals_the_pit_it_describes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (w, l, d) = (0.3e-3, 0.6e-3, 3e-6);
+    std::fs::create_dir(dir.path().join("maps")).unwrap();
+    ndarray_npy::write_npy(
+        dir.path().join("maps/flat.npy"),
+        &ndarray::Array2::<f64>::from_elem((2, 2), d),
+    )
+    .unwrap();
+    // dy spans the length, dx the width; off-centre, so a wrong centre would show
+    let map = format!(
+        "\n[[features]]\nkind = \"height-map\"\nfile = \"maps/flat.npy\"\ndx = {w:e}\ndy = {l:e}\nx = 0.1e-3\ny = 0.5e-3\n"
+    );
+    let case_path = dir.path().join("case.toml");
+    let text = DRY.to_string() + &map;
+    std::fs::write(&case_path, &text).unwrap();
+    let case = parse_str(&text, &case_path.display().to_string(), &[]).expect("map case");
+    let from_map = solve(&case, &Silent).unwrap();
+    let from_pit = run(&(DRY.to_string() + &pit(1, w, l, d, 0.1e-3, 0.5e-3)));
+    let pmax = from_pit.summary.max_pressure_pa;
+    let diff = from_map
+        .fields
+        .pressure
+        .iter()
+        .zip(&from_pit.fields.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-9 * pmax, "{diff}");
+    // and the pit is not the smooth contact
+    let smooth = run(DRY);
+    assert!((smooth.summary.max_pressure_pa - pmax).abs() > 1e-3 * pmax);
+}
