@@ -1136,7 +1136,14 @@ fn solver(top: &Sec, kind: Kind) -> R<SolverSpec> {
 
 /// `[[features]]`: validated, loaded (a height map's `.npy` file, relative to the case file's
 /// folder) and checked to lie inside the grid.
-fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<Vec<FeatureSpec>> {
+fn features(
+    top: &Sec,
+    g: &GridSpec,
+    b: f64,
+    r: f64,
+    infinite: bool,
+    travel: bool,
+) -> R<Vec<FeatureSpec>> {
     use crate::surface::{Feature, FeatureShape, HeightMap, Pattern};
     let Some(v) = top.get("features") else {
         return Ok(Vec::new());
@@ -1293,6 +1300,28 @@ fn features(top: &Sec, g: &GridSpec, b: f64, infinite: bool, travel: bool) -> R<
                 }
             }
         };
+        // the gap model is parabolic (small slopes): a feature deeper than a hundredth of the
+        // reduced radius is outside it (and a pit that deep is a hole, not a surface feature)
+        let (depth_key, depth) = match &shape {
+            FeatureShape::Pit { depth, .. } | FeatureShape::Dent { depth, .. } => ("depth", *depth),
+            FeatureShape::Waviness { amplitude, .. } => ("amplitude", *amplitude),
+            FeatureShape::HeightMap(m) => (
+                "file",
+                m.depths.iter().fold(0.0f64, |a, d| a.max(d.abs())),
+            ),
+        };
+        if !(depth.abs() <= 0.01 * r) {
+            return Err(s.err(
+                depth_key,
+                format!(
+                    "a feature {} {} mm deep is outside the small-slope gap model: at most 1 % of the reduced radius R = {} mm, i.e. {} mm",
+                    if depth_key == "file" { "whose map is up to" } else { "of" },
+                    mm(depth.abs()),
+                    mm(r),
+                    mm(0.01 * r)
+                ),
+            ));
+        }
         let (mut hx, mut hy) = match &shape {
             FeatureShape::Pit { width, length, .. } | FeatureShape::Dent { width, length, .. } => {
                 (0.5 * width, 0.5 * length)
@@ -1427,7 +1456,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
     let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
-    let features = features(&top, &grid, b, infinite, travel)?;
+    let features = features(&top, &grid, b, r, infinite, travel)?;
     if let Some(m) = &motion {
         // a steady run is exact only for features on a body that stands still
         for (i, f) in features.iter().enumerate() {

@@ -394,6 +394,12 @@ fn features_are_resolved_and_checked() {
     assert!(matches!(c.features[0].feature.shape, FeatureShape::Waviness { .. }));
     let (k, _) = err(&(ROLLERS.to_string() + wav), &["features[0].depth=1e-7"]);
     assert_eq!(k, "features[0].depth");
+    // depths beyond the small-slope gap model (1 % of R) are refused, by the key that sets them
+    let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].depth=1e-3"]);
+    assert_eq!(k, "features[0].depth");
+    assert!(m.contains("small-slope"), "{m}");
+    let (k, _) = err(&(ROLLERS.to_string() + wav), &["features[0].amplitude=-1e300"]);
+    assert_eq!(k, "features[0].amplitude");
     let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].width=inf"]);
     assert_eq!(k, "features[0].width");
     let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].x=0.01"]);
