@@ -73,6 +73,27 @@ fn mm(v: f64) -> String {
     fmt_num(v * 1e3)
 }
 
+/// Sizes of a body (radius, radius_y, finite length), m: from 1 um (a colloidal probe) to 1 km
+/// (beyond, a body is a plane at any contact size: use shape = "flat"). Outside, the Hertz scales
+/// underflow or overflow and the grid loses its meaning.
+pub const BODY_SIZE_RANGE: (f64, f64) = (1e-6, 1e3);
+
+fn body_size(s: &Sec, k: &str, v: f64) -> R<()> {
+    let (lo, hi) = BODY_SIZE_RANGE;
+    if v.is_finite() && !(lo..=hi).contains(&v) {
+        return Err(s.err(
+            k,
+            format!(
+                "{} m is outside the sizes this program models, {} to {} m (for a plane use shape = \"flat\")",
+                fmt_num(v),
+                fmt_num(lo),
+                fmt_num(hi)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// `[body1]` / `[body2]`.
 fn body(top: &Sec, name: &str) -> R<Body> {
     let t = sub(top, name, "the body's shape, size and elastic constants")?.ok_or_else(|| {
@@ -147,6 +168,7 @@ fn body(top: &Sec, name: &str) -> R<Body> {
                 ),
             ));
         }
+        body_size(s, "radius", r)?;
         Ok(r)
     };
 
@@ -178,12 +200,14 @@ fn body(top: &Sec, name: &str) -> R<Body> {
                     ),
                 ));
             }
+            body_size(&s, "length", len)?;
             b.length = len;
             b.profile = profile(&s, len)?;
         }
         Shape::Ball => {
             b.radius = radius_of(&s)?;
             b.radius_y = s.positive("radius_y", "m")?.unwrap_or(b.radius);
+            body_size(&s, "radius_y", b.radius_y)?;
             forbid(
                 &s,
                 "length",

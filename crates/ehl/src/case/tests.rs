@@ -458,3 +458,22 @@ fn body_pairs() {
     let (k, _) = err(BALL, &["body2.axial_offset=0.001"]);
     assert_eq!(k, "body2.axial_offset");
 }
+
+/// Found by the fuzzer: a radius of f64::MIN_POSITIVE was accepted and gave a NaN resolution in
+/// the check report. Sizes outside 1 um .. 1 km are refused by their key.
+#[test]
+fn body_sizes_are_bounded() {
+    for (key, v) in [
+        ("body2.radius", "2.2250738585072014e-308"),
+        ("body1.radius", "1e4"),
+        ("body1.length", "1e-300"),
+    ] {
+        let (k, m) = err(ROLLERS, &[&format!("{key}={v}")]);
+        assert_eq!(k, key);
+        assert!(m.contains("outside the sizes"), "{m}");
+    }
+    let (k, _) = err(BALL, &["body1.radius_y=1e9"]);
+    assert_eq!(k, "body1.radius_y");
+    // the ends of the range are accepted as sizes (other checks may still apply)
+    assert!(parse(ROLLERS, &["body1.radius=1e3", "body2.radius=1e3"]).is_ok());
+}
