@@ -250,7 +250,11 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
     for out in [".", "mine/.."] {
         let o = w.ehl(&["run", "case.toml", "--out", out]);
         assert_eq!(o.code, 1, "--out {out}: {}", o.stderr);
-        assert!(o.stderr.contains("did not write"), "--out {out}: {}", o.stderr);
+        assert!(
+            o.stderr.contains("did not write"),
+            "--out {out}: {}",
+            o.stderr
+        );
         assert_eq!(names(w.path()), ["case.toml", "mine"], "--out {out}");
     }
 

@@ -168,7 +168,10 @@ fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
     // the pit changes the film where it sits
     let g = s.grid;
     let k = g.idx(g.nx * 4 / 11, g.ny / 2); // x near 0 on x = -4 .. 1.5 b
-    let (h, h0) = (s.fields.film.as_ref().unwrap()[k], smooth.fields.film.as_ref().unwrap()[k]);
+    let (h, h0) = (
+        s.fields.film.as_ref().unwrap()[k],
+        smooth.fields.film.as_ref().unwrap()[k],
+    );
     assert!((h - h0).abs() > 1e-9, "{h} vs {h0}");
 }
 

@@ -1239,7 +1239,14 @@ fn features(
         };
         let shape = match kind {
             "height-map" => {
-                for k in ["width", "length", "depth", "pattern", "amplitude", "wavelength"] {
+                for k in [
+                    "width",
+                    "length",
+                    "depth",
+                    "pattern",
+                    "amplitude",
+                    "wavelength",
+                ] {
                     forbid(
                         &s,
                         k,
@@ -1292,7 +1299,11 @@ fn features(
             }
             _ => {
                 for k in ["file", "dx", "dy", "amplitude", "wavelength"] {
-                    forbid(&s, k, "is used only by kind = \"height-map\" or \"waviness\"")?;
+                    forbid(
+                        &s,
+                        k,
+                        "is used only by kind = \"height-map\" or \"waviness\"",
+                    )?;
                 }
                 let width = extent("width", false, "the feature's width along x in m")?;
                 let length = if kind == "dent" && !s.has("length") {
@@ -1329,10 +1340,9 @@ fn features(
         let (depth_key, depth) = match &shape {
             FeatureShape::Pit { depth, .. } | FeatureShape::Dent { depth, .. } => ("depth", *depth),
             FeatureShape::Waviness { amplitude, .. } => ("amplitude", *amplitude),
-            FeatureShape::HeightMap(m) => (
-                "file",
-                m.depths.iter().fold(0.0f64, |a, d| a.max(d.abs())),
-            ),
+            FeatureShape::HeightMap(m) => {
+                ("file", m.depths.iter().fold(0.0f64, |a, d| a.max(d.abs())))
+            }
         };
         if !(depth.abs() <= 0.01 * r) {
             return Err(s.err(
@@ -1394,6 +1404,29 @@ fn features(
                 row_pitch: rp.unwrap_or(0.0),
                 column_pitch: cp.unwrap_or(0.0),
             });
+        }
+        // an infinite line contact is solved in 1D on a 1 m reference strip: a feature of finite
+        // extent along y would be averaged over that strip (a 0.5 mm pit as 1/2000 of its
+        // depth); only features uniform along y have a 1D meaning
+        if infinite {
+            let uniform = match &shape {
+                FeatureShape::Pit { length, .. } | FeatureShape::Dent { length, .. } => {
+                    length.is_infinite()
+                }
+                FeatureShape::Waviness { .. } => true,
+                FeatureShape::HeightMap(_) => false,
+            };
+            if !uniform {
+                let k = if kind == "height-map" {
+                    "kind"
+                } else {
+                    "length"
+                };
+                return Err(s.err(
+                    k,
+                    "an infinite line contact (length = inf) is solved in 1D, where a feature must be uniform along y: give length = inf (a transverse groove) or use a waviness; for a finite pit use finite rollers",
+                ));
+            }
         }
         let localized = !matches!(shape, FeatureShape::Waviness { .. });
         if localized && !travel && (x - hx < xlo || x + hx > xhi) {

@@ -380,25 +380,39 @@ fn features_are_resolved_and_checked() {
     // a groove (length = inf) and a ridge (negative depth) are features too
     let c = parse(
         &(ROLLERS.to_string() + pit),
-        &["features[0].length=inf", "features[0].depth=-1e-7", "features[0].body=2"],
+        &[
+            "features[0].length=inf",
+            "features[0].depth=-1e-7",
+            "features[0].body=2",
+        ],
     )
     .unwrap();
     assert_eq!(c.features[0].body, 2);
-    assert!(matches!(c.features[0].feature.shape, FeatureShape::Pit { length, depth, .. } if length.is_infinite() && depth == -1e-7));
+    assert!(
+        matches!(c.features[0].feature.shape, FeatureShape::Pit { length, depth, .. } if length.is_infinite() && depth == -1e-7)
+    );
     // a dent's length defaults to its width; a waviness needs amplitude and wavelength only
     let dent = "\n[[features]]\nkind = \"dent\"\nwidth = 0.2e-3\ndepth = 1e-7\n";
     let c = parse(&(ROLLERS.to_string() + dent), &[]).unwrap();
-    assert!(matches!(c.features[0].feature.shape, FeatureShape::Dent { width, length, .. } if width == length));
+    assert!(
+        matches!(c.features[0].feature.shape, FeatureShape::Dent { width, length, .. } if width == length)
+    );
     let wav = "\n[[features]]\nkind = \"waviness\"\namplitude = 1e-7\nwavelength = 0.3e-3\n";
     let c = parse(&(ROLLERS.to_string() + wav), &[]).unwrap();
-    assert!(matches!(c.features[0].feature.shape, FeatureShape::Waviness { .. }));
+    assert!(matches!(
+        c.features[0].feature.shape,
+        FeatureShape::Waviness { .. }
+    ));
     let (k, _) = err(&(ROLLERS.to_string() + wav), &["features[0].depth=1e-7"]);
     assert_eq!(k, "features[0].depth");
     // depths beyond the small-slope gap model (1 % of R) are refused, by the key that sets them
     let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].depth=1e-3"]);
     assert_eq!(k, "features[0].depth");
     assert!(m.contains("small-slope"), "{m}");
-    let (k, _) = err(&(ROLLERS.to_string() + wav), &["features[0].amplitude=-1e300"]);
+    let (k, _) = err(
+        &(ROLLERS.to_string() + wav),
+        &["features[0].amplitude=-1e300"],
+    );
     assert_eq!(k, "features[0].amplitude");
     let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].width=inf"]);
     assert_eq!(k, "features[0].width");
@@ -420,7 +434,10 @@ fn features_on_a_moving_surface_wait_for_transient_runs() {
     let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\nbody = 2\n";
     let (k, m) = err(&(EHL.to_string() + pit), &[]);
     assert_eq!(k, "features[0].body");
-    assert!(m.contains("transient") && m.contains("slide_to_roll = 2"), "{m}");
+    assert!(
+        m.contains("transient") && m.contains("slide_to_roll = 2"),
+        "{m}"
+    );
     // body 2 standing still (SRR = 2): a steady problem
     let c = parse(&(EHL.to_string() + pit), &["motion.slide_to_roll=2"]).unwrap();
     assert_eq!(c.features.len(), 1);
@@ -476,4 +493,23 @@ fn body_sizes_are_bounded() {
     assert_eq!(k, "body1.radius_y");
     // the ends of the range are accepted as sizes (other checks may still apply)
     assert!(parse(ROLLERS, &["body1.radius=1e3", "body2.radius=1e3"]).is_ok());
+}
+
+/// An infinite line contact is solved in 1D on a 1 m strip: a finite pit would be averaged over
+/// it, so only features uniform along y are accepted there.
+#[test]
+fn features_of_an_infinite_line_contact_are_uniform_along_y() {
+    let line = [
+        "body1.length=inf",
+        "body2.length=inf",
+        "load={ force_per_length = 5e5 }",
+    ];
+    let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.05e-3\nlength = 0.5e-3\ndepth = 1e-7\n";
+    let (k, m) = err(&(ROLLERS.to_string() + pit), &line);
+    assert_eq!(k, "features[0].length");
+    assert!(m.contains("uniform along y"), "{m}");
+    let mut sets = line.to_vec();
+    sets.push("features[0].length=inf");
+    let c = parse(&(ROLLERS.to_string() + pit), &sets).unwrap();
+    assert_eq!(c.features.len(), 1);
 }
