@@ -317,6 +317,7 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
                     density: None,
                 },
                 summary,
+                transient: None,
             }
         }
         Kind::Ehl => solve_ehl(
@@ -653,6 +654,7 @@ fn solve_ehl(
             density: Some(r.density),
         },
         summary,
+        transient: None,
     })
 }
 

@@ -93,4 +93,71 @@ pub struct Solution {
     pub grid: Grid,
     pub fields: Fields,
     pub summary: Summary,
+    /// transient runs: the timeline, frames and snapshots (`fields` and `summary` are the last step)
+    pub transient: Option<TransientRecord>,
+}
+
+/// One time step of a transient run (SI): a row of `timeline.csv`.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct StepRecord {
+    /// 0 is the steady start
+    pub step: usize,
+    pub time_s: f64,
+    /// centre of features[0] along x (m); NaN-free: the body's travel when there is no feature
+    pub x_p_m: f64,
+    pub max_pressure_pa: f64,
+    pub min_film_m: f64,
+    /// film at x = 0, y = 0 (m)
+    pub central_film_m: f64,
+    /// None when the friction integral failed at this step
+    pub friction_coefficient: Option<f64>,
+    /// relative load error (sum p dA - load) / load
+    pub load_error: f64,
+    pub converged: bool,
+    /// rigid-body film constant h0 (m): varies so that the load stays constant
+    pub h0_m: f64,
+    /// Newton steps of this time step
+    pub newton_iterations: usize,
+    /// GMRES iterations of this time step
+    pub linear_iterations: usize,
+    /// elastic operator applications of this time step
+    pub operator_applications: usize,
+    /// discrete mass balance of the pressurised zone, relative to the inflow:
+    /// (inflow - outflow - side leakage - d(mass)/dt) / inflow
+    pub mass_balance: f64,
+    /// lubricant mass flows (kg/s; line contact: per metre)
+    pub mass_inflow_kg_s: f64,
+    pub mass_outflow_kg_s: f64,
+    pub side_leakage_kg_s: f64,
+    /// rate of change of the lubricant mass in the pressurised zone (kg/s)
+    pub mass_storage_kg_s: f64,
+    /// wall time of this step (s)
+    pub wall_time_s: f64,
+}
+
+/// The fields of one kept time step (row-major `ny * nx`, SI).
+#[derive(Debug, Clone, Default)]
+pub struct Frame {
+    pub step: usize,
+    pub time_s: f64,
+    pub x_p_m: f64,
+    /// Pa
+    pub pressure: Vec<f64>,
+    /// m (f64::INFINITY where a body has no material)
+    pub film: Vec<f64>,
+}
+
+/// What a transient run adds to a [`Solution`]: the timeline of every step, the frames kept
+/// (every `output.frames_every`-th step) and the full fields at the requested snapshots.
+/// `Solution::fields` and `Solution::summary` hold the last step.
+#[derive(Debug, Clone, Default)]
+pub struct TransientRecord {
+    pub timeline: Vec<StepRecord>,
+    pub frames: Vec<Frame>,
+    /// (requested x_p (m), the step nearest to it, its fields)
+    pub snapshots: Vec<(f64, usize, Fields)>,
+    /// time step (s)
+    pub dt_s: f64,
+    /// every k-th step kept in `frames`
+    pub frames_every: usize,
 }

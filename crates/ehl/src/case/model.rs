@@ -92,6 +92,53 @@ pub struct Motion {
     pub entrainment_speed: f64,
     /// SRR = (u1 - u2)/u_e
     pub slide_to_roll: f64,
+    /// `motion.travel`: present for a transient run
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub travel: Option<Travel>,
+}
+
+/// `motion.travel`: the time span of a transient run, in equal time steps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Travel {
+    /// The centre of `features[0]` (x_p, m) moves from `from` to `to` with its body's surface
+    /// speed: time step = (to - from) / steps / u_body. Every body's surface is placed at t = 0
+    /// so that features[0]'s centre sits at `from` (all features keep their relative positions).
+    Path { from: f64, to: f64, steps: usize },
+    /// `duration` seconds in `steps` equal steps; features start where the case puts them.
+    Duration { duration: f64, steps: usize },
+}
+
+impl Travel {
+    /// Number of time steps.
+    pub fn steps(&self) -> usize {
+        match *self {
+            Travel::Path { steps, .. } | Travel::Duration { steps, .. } => steps,
+        }
+    }
+}
+
+/// `[output]` (optional; transient runs).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OutputSpec {
+    /// keep the fields of every k-th step in frames.npz; None: every step unless the frames
+    /// would exceed the memory limit (then the least k that fits)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frames_every: Option<usize>,
+    /// x_p values (m) at which to also write the maps and profiles (snapshots/)
+    pub snapshots: Vec<f64>,
+    /// write passage.gif
+    pub animation: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            frames_every: None,
+            snapshots: Vec::new(),
+            animation: true,
+        }
+    }
 }
 
 impl Motion {
@@ -192,6 +239,8 @@ pub struct Case {
     /// `[[features]]`: surface features, each on its body (empty: smooth surfaces)
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub features: Vec<FeatureSpec>,
+    /// `[output]`: per-step outputs of a transient run
+    pub output: OutputSpec,
 }
 
 /// One resolved `[[features]]` table: the feature as the solver samples it, on its body.

@@ -901,6 +901,7 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
         Motion {
             entrainment_speed: u_e,
             slide_to_roll: srr,
+            travel: None,
         },
         travel,
     ))
@@ -1552,6 +1553,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         grid,
         solver,
         features,
+        output: Default::default(),
     };
     let (limit, source) = crate::run::memory_limit();
     crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;

@@ -69,6 +69,7 @@ pub(crate) fn case(body1: Body, body2: Body, force: f64) -> Case {
             wedge_upwind_order: 2,
         },
         features: Vec::new(),
+        output: Default::default(),
     }
 }
 

@@ -55,6 +55,7 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
             wedge_upwind_order: 2,
         },
         features: Vec::new(),
+        output: Default::default(),
     }
 }
 
@@ -155,6 +156,7 @@ pub fn dry_ball() -> (Case, Solution) {
             grid,
             fields,
             summary,
+            transient: None,
         },
     )
 }
@@ -223,6 +225,7 @@ pub fn dry_roller() -> (Case, Solution) {
             grid,
             fields,
             summary,
+            transient: None,
         },
     )
 }
@@ -279,6 +282,7 @@ pub fn dry_infinite_line() -> (Case, Solution) {
             grid,
             fields,
             summary,
+            transient: None,
         },
     )
 }
@@ -307,6 +311,7 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
     case.motion = Some(Motion {
         entrainment_speed: 0.09,
         slide_to_roll: 0.0,
+        travel: None,
     });
     case.lubricant = Some(Lubricant {
         viscosity: 0.25,
@@ -378,6 +383,7 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
             grid,
             fields: f,
             summary,
+            transient: None,
         },
     )
 }

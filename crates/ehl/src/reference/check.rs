@@ -300,6 +300,7 @@ mod tests {
             motion: Some(Motion {
                 entrainment_speed: 2.7,
                 slide_to_roll: 0.0,
+                travel: None,
             }),
             lubricant: Some(Lubricant {
                 viscosity: 0.04,
@@ -325,6 +326,7 @@ mod tests {
                 wedge_upwind_order: 2,
             },
             features: Vec::new(),
+            output: Default::default(),
         }
     }
 
