@@ -5,40 +5,6 @@ use ehl::case::{DensityModel, ViscosityModel};
 use ehl::ehl::{solve_steady, EhlParams, EhlProblem, EhlResult};
 use ehl::elastic::{Deflection, FftDeflection};
 use ehl::grid::Grid;
-use ehl::units;
-
-pub struct LineCase {
-    pub e: f64,
-    pub r: f64,
-    pub w: f64,
-    pub ue: f64,
-    pub b: f64,
-    pub ph: f64,
-    pub lub: ehl::case::Lubricant,
-}
-
-/// A line contact with Moes groups (M, L) (Venner-Lubrecht definition with 2U, see
-/// `reference::film::moes_line_groups`): E' = 2.2e11 Pa, R = 0.02 m, eta0 = 0.04 Pa s,
-/// alpha = 20 GPa^-1 (G = 4400); U from L, W from M.
-pub fn line_case(m: f64, l: f64, visc: ViscosityModel, dens: DensityModel) -> LineCase {
-    let (e, r, eta0, alpha) = (2.2e11, 0.02, 0.04, 2.0e-8);
-    let g = alpha * e;
-    // L = G (2U)^(1/4), M = W (2U)^(-1/2)
-    let u2 = (l / g).powi(4);
-    let u = 0.5 * u2;
-    let wd = m * u2.sqrt();
-    let w = wd * e * r;
-    let ue = u * e * r / eta0;
-    LineCase {
-        e,
-        r,
-        w,
-        ue,
-        b: units::hertz_line_half_width(w, r, e),
-        ph: units::hertz_line_pressure(w, r, e),
-        lub: lubricant(eta0, alpha, visc, dens),
-    }
-}
 
 pub fn solve_line(c: &LineCase, nx: usize, xin: f64, xout: f64) -> (EhlResult, Grid) {
     solve_line_p(c, nx, xin, xout, &EhlParams::default())

@@ -24,6 +24,7 @@
 //! Results are returned in SI.
 
 mod system;
+pub mod transient;
 
 use crate::case::Lubricant;
 use crate::elastic::Deflection;
@@ -33,6 +34,10 @@ use crate::reference::film;
 use crate::reynolds::gmres::{gmres, norm, GmresWork};
 use crate::reynolds::residual;
 use system::{jacobian_product, Linear, Physics, Preconditioner, State, System};
+pub use transient::{
+    solve_transient, MassBalance, MovingSurface, StepResult, TimeScheme, TransientEnd,
+    TransientParams, TransientProblem,
+};
 
 /// A steady isothermal EHL problem (SI units).
 pub struct EhlProblem<'a> {

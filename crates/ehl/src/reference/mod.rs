@@ -6,11 +6,13 @@
 //! * [`film`]: classical EHL film-thickness fits, each with its groups and the lubricant laws
 //!   of the solutions it was fitted to.
 //! * [`palmgren`]: the empirical roller approach.
+//! * [`waviness`]: amplitude reduction of waviness in transient EHL (Venner et al. 1997).
 //! * [`check`]: the `ehl check` report.
 
 pub mod check;
 pub mod film;
 pub mod hertz;
 pub mod palmgren;
+pub mod waviness;
 
 pub use check::{check_report, CheckReport};

@@ -26,11 +26,11 @@
 //! Written as fluxes, the sum of the cell residuals over any set of cells is the net flow through
 //! the set's boundary, which is how [`mass_flow`] measures inflow, outflow and side leakage.
 //!
-//! **Later extensions (pits, thesis ch. 3)**: the time-dependent term enters through
-//! [`Transient`] (the previous time level of rho H and the step), so a transient driver calls the
-//! same residual; a surface feature moving with its own body's speed changes only the film H
-//! that the caller passes in (h = h0 + g(x - u_body t, y) + deflection) and, for the squeeze
-//! term, `rho_h_prev`; nothing here assumes a steady film.
+//! **Squeeze term** (transient runs, thesis eq. 3.1 with d(rho H)/dT kept whole): with
+//! [`Transient`] `{ c0, history }` each cell adds `c0 (rho H)_k - history_k` to its flow balance,
+//! the BDF rule of the time loop (`ehl::transient`): backward Euler c0 = 1/dT, history =
+//! (rho H)^{n-1}/dT; BDF2 c0 = 3/(2 dT), history = (4 (rho H)^{n-1} - (rho H)^{n-2})/(2 dT).
+//! A surface feature moving with its body changes only the film H the caller passes in.
 
 /// Dimensionless grid for the Reynolds operator: `nx * ny` cells of size `dx * dy` (in b).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,12 +43,19 @@ pub struct ReynoldsGrid {
     pub second_order: bool,
 }
 
-/// Previous time level for the squeeze term -d(rho H)/dT ≈ -(rho H - rho_h_prev) / dt
-/// (backward Euler; thesis eq. 3.1). `dt` is the dimensionless step (t u_e / b).
+/// The squeeze term d(rho H)/dT of a time step, written as `c0 (rho H)_k - history_k` with the
+/// earlier levels folded into `history` (T = t u_e / b, the dimensionless time):
+///
+/// * backward Euler (BDF1): c0 = 1/dT, history = (rho H)^{n-1} / dT;
+/// * BDF2 (constant step): c0 = 3/(2 dT), history = (4 (rho H)^{n-1} - (rho H)^{n-2}) / (2 dT).
+///
+/// Thesis eq. 3.1 keeps d(rho h)/dt whole here: the density's time variation and the film's
+/// (elastic and rigid, h0) are in it, not only the pit's motion (eq. 3.2-3.3), so that the
+/// discrete equation conserves mass.
 #[derive(Debug, Clone, Copy)]
 pub struct Transient<'a> {
-    pub rho_h_prev: &'a [f64],
-    pub dt: f64,
+    pub c0: f64,
+    pub history: &'a [f64],
 }
 
 /// The per-cell state the operator needs. `active[k] == false` marks a cell without material
@@ -160,7 +167,7 @@ pub(crate) fn operator_at(
         pois += c * (pn - pk);
     }
     let couette = (couette_east(g, f, i, j) - couette_west(g, f, i, j)) / g.dx;
-    let squeeze = transient.map_or(0.0, |t| (f.rho[k] * f.h[k] - t.rho_h_prev[k]) / t.dt);
+    let squeeze = transient.map_or(0.0, |t| t.c0 * f.rho[k] * f.h[k] - t.history[k]);
     pois - couette - squeeze
 }
 

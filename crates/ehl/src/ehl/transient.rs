@@ -1,0 +1,364 @@
+//! Transient isothermal EHL: surface features moving through the contact with their bodies
+//! (thesis ch. 3), the time loop around the steady system.
+//!
+//! The Reynolds equation keeps its squeeze term whole (thesis eq. 3.1):
+//!
+//! ```text
+//!   d/dX (eps dP/dX) + d/dY (eps dP/dY) - d(rho H)/dX - d(rho H)/dT = 0,   T = t u_e / b
+//! ```
+//!
+//! with the film H(X, Y, T) = H0(T) + G(X, Y, T) + D(P), where the undeformed gap G holds each
+//! body's features at the position its surface has reached, x_k(t) = x_k(0) + u_k t
+//! (u1 = u_e (1 + SRR/2), u2 = u_e (1 - SRR/2)). The wedge term carries the film with the mean
+//! speed u_e; the features move with their own body's speed; d(rho H)/dT takes the density's,
+//! the deflection's, the rigid approach H0's and the features' changes together, which is what
+//! conserves mass and lets the film's disturbances travel at u_e (Venner & Lubrecht 2000,
+//! ch. 13; Greenwood & Morales-Espejel 1994).
+//!
+//! Time discretisation: BDF2 with a constant step (second order, A-stable), backward Euler
+//! (BDF1) for the first step from the steady start (whose history is not known). Each step is
+//! a steady-like Newton-Krylov solve of the same system with the squeeze term's c0 on its
+//! diagonal ([`super::system::Squeeze`]), started from the previous step's pressure and H0; the
+//! load balance holds at every step (constant load, H0 varies).
+
+use super::system::{Physics, Squeeze, State, System};
+use super::{line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats};
+use crate::geometry::{GapSampler, GapWithFeatures};
+use crate::reynolds::residual;
+use crate::surface::Surface;
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+/// A body's surface with its features, where it starts and how fast it moves along x.
+#[derive(Clone, Copy)]
+pub struct MovingSurface<'a> {
+    pub surface: &'a Surface,
+    /// shift of the surface along x at t = 0 (m)
+    pub shift0: f64,
+    /// surface speed (m/s)
+    pub speed: f64,
+}
+
+impl MovingSurface<'_> {
+    /// Shift of the surface along x at time `t` (s): x(0) + u t.
+    pub fn shift(&self, t: f64) -> f64 {
+        self.shift0 + self.speed * t
+    }
+}
+
+/// A transient problem: the steady problem's contact and lubricant (its `gap` is not used: the
+/// gap is `smooth` plus the moving surfaces), `steps` steps of `dt` seconds.
+pub struct TransientProblem<'a> {
+    pub base: EhlProblem<'a>,
+    pub smooth: &'a dyn GapSampler,
+    pub surfaces: Vec<MovingSurface<'a>>,
+    /// s
+    pub dt: f64,
+    pub steps: usize,
+}
+
+/// Time integration rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TimeScheme {
+    /// backward Euler at every step (first order, strongly damping: for comparisons only)
+    BackwardEuler,
+    /// BDF2 after a backward-Euler first step (second order)
+    Bdf2,
+}
+
+/// Controls of a transient run.
+#[derive(Debug, Clone, Copy)]
+pub struct TransientParams {
+    /// the Newton-Krylov controls, used for the steady start and for every step
+    pub newton: EhlParams,
+    pub scheme: TimeScheme,
+}
+
+impl Default for TransientParams {
+    fn default() -> Self {
+        TransientParams {
+            newton: EhlParams::default(),
+            scheme: TimeScheme::Bdf2,
+        }
+    }
+}
+
+/// The discrete mass balance of the pressurised zone (cells with P > 0) at one step, kg/s
+/// (line contact: per metre): inflow - outflow - side leakage = storage (the rate of change of
+/// the mass held), up to the solver tolerance. Outflow counts the flow into cavitated cells
+/// (the cavitation loss) with that through the outlet.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MassBalance {
+    pub inflow: f64,
+    pub outflow: f64,
+    pub side_leakage: f64,
+    pub storage: f64,
+}
+
+impl MassBalance {
+    /// (inflow - outflow - side leakage - storage) / inflow.
+    pub fn relative_error(&self) -> f64 {
+        let r = self.inflow - self.outflow - self.side_leakage - self.storage;
+        if self.inflow != 0.0 {
+            r / self.inflow
+        } else {
+            r
+        }
+    }
+}
+
+/// One solved time step (SI). Step 0 is the steady start.
+#[derive(Debug, Clone)]
+pub struct StepResult {
+    pub step: usize,
+    /// s
+    pub time: f64,
+    /// Pa
+    pub pressure: Vec<f64>,
+    /// m (f64::INFINITY where a body has no material)
+    pub film: Vec<f64>,
+    /// m
+    pub deflection: Vec<f64>,
+    /// Pa s
+    pub viscosity: Vec<f64>,
+    /// kg/m^3
+    pub density: Vec<f64>,
+    /// m
+    pub h0: f64,
+    pub converged: bool,
+    pub termination: String,
+    /// relative residual (see [`super::EhlResult::residual`])
+    pub residual: f64,
+    /// (sum p dA - load) / load
+    pub load_error: f64,
+    pub newton_iterations: usize,
+    pub linear_iterations: usize,
+    pub operator_applications: usize,
+    pub mass: MassBalance,
+    /// s
+    pub wall_time: f64,
+}
+
+/// How a transient run ended.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum TransientEnd {
+    /// every step was solved (some may not have converged: see `failed_steps`)
+    Completed { failed_steps: Vec<usize> },
+    /// the observer asked to stop after this step
+    Stopped { after_step: usize },
+}
+
+/// Runs the transient problem: the steady start, then `steps` time steps; `observer` receives
+/// every step (step 0 first) and may stop the run. Never panics on a physical input; a step that
+/// does not converge is reported (`converged == false`) and the run goes on from its best state.
+pub fn solve_transient(
+    problem: &TransientProblem,
+    params: &TransientParams,
+    observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
+) -> TransientEnd {
+    rayon::scope(|_| run(problem, params, observer))
+}
+
+fn gap_at<'a>(problem: &'a TransientProblem, t: f64) -> GapWithFeatures<'a> {
+    GapWithFeatures {
+        smooth: problem.smooth,
+        surfaces: problem
+            .surfaces
+            .iter()
+            .filter(|s| !s.surface.features.is_empty())
+            .map(|s| (s.surface, s.shift(t)))
+            .collect(),
+    }
+}
+
+fn run(
+    problem: &TransientProblem,
+    params: &TransientParams,
+    observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
+) -> TransientEnd {
+    let base = &problem.base;
+    let grid = base.grid;
+    let (b, r, ph) = (
+        base.hertz_half_width,
+        base.reduced_radius,
+        base.hertz_pressure,
+    );
+    let hs = b * b / r;
+    let clock = Instant::now();
+
+    // the steady start with the features at their t = 0 positions
+    let gap0 = gap_at(problem, 0.0);
+    let steady = solve_steady_with_fallback(
+        &EhlProblem {
+            gap: &gap0,
+            ..*base
+        },
+        &params.newton,
+        &|| {},
+    );
+    let lub = base.lubricant;
+    let phys = Physics {
+        lubricant: lub.clone(),
+        ph,
+        lambda: 12.0 * base.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph),
+    };
+    let mut sys = System::new(
+        grid,
+        (base.operator)(grid),
+        &gap0,
+        b,
+        r,
+        phys,
+        base.load,
+        line_band(grid, params.newton.band),
+        params.newton.wedge_upwind_order != 1,
+    );
+    let n = grid.len();
+    let mut st = State::new(n);
+    for k in 0..n {
+        st.p[k] = if sys.active[k] {
+            steady.pressure[k] / ph
+        } else {
+            0.0
+        };
+    }
+    st.h0 = steady.h0 / hs;
+    sys.eval(&mut st);
+    let start = StepResult {
+        step: 0,
+        time: 0.0,
+        pressure: steady.pressure.clone(),
+        film: steady.film.clone(),
+        deflection: steady.deflection.clone(),
+        viscosity: steady.viscosity.clone(),
+        density: steady.density.clone(),
+        h0: steady.h0,
+        converged: steady.converged,
+        termination: steady.termination.clone(),
+        residual: steady.residual,
+        load_error: steady.load_error,
+        newton_iterations: steady.iterations,
+        linear_iterations: steady.linear_iterations,
+        operator_applications: steady.operator_applications,
+        mass: balance(problem, &sys, &st),
+        wall_time: clock.elapsed().as_secs_f64(),
+    };
+    if observer(&start).is_break() {
+        return TransientEnd::Stopped { after_step: 0 };
+    }
+
+    // time steps: q = rho H at the two previous levels
+    let dtau = problem.dt * base.entrainment_speed / b;
+    let q = |st: &State| -> Vec<f64> { st.rho.iter().zip(&st.h).map(|(r, h)| r * h).collect() };
+    let mut q1 = q(&st);
+    let mut q2: Option<Vec<f64>> = None;
+    let mut failed = Vec::new();
+    for step in 1..=problem.steps {
+        let t0 = Instant::now();
+        let t = step as f64 * problem.dt;
+        sys.set_gap(&gap_at(problem, t));
+        sys.squeeze = Some(match (&q2, params.scheme) {
+            (Some(q2), TimeScheme::Bdf2) => Squeeze {
+                c0: 1.5 / dtau,
+                history: q1
+                    .iter()
+                    .zip(q2)
+                    .map(|(a, b)| (4.0 * a - b) / (2.0 * dtau))
+                    .collect(),
+            },
+            _ => Squeeze {
+                c0: 1.0 / dtau,
+                history: q1.iter().map(|a| a / dtau).collect(),
+            },
+        });
+        sys.eval(&mut st);
+        let mut stats = Stats::default();
+        let applies0 = sys.applies;
+        let end = solve_from(
+            &mut sys,
+            &mut st,
+            params.newton.tolerance,
+            &params.newton,
+            &mut stats,
+        );
+        if !end.converged {
+            failed.push(step);
+        }
+        let res = StepResult {
+            step,
+            time: t,
+            pressure: st.p.iter().map(|p| p * ph).collect(),
+            film: (0..n)
+                .map(|k| {
+                    if sys.active[k] {
+                        st.h[k] * hs
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect(),
+            deflection: st.def.iter().map(|d| d * hs).collect(),
+            viscosity: st
+                .p
+                .iter()
+                .map(|&p| {
+                    let v = lub.viscosity * sys.phys.eta(p);
+                    if v.is_finite() {
+                        v
+                    } else {
+                        f64::MAX
+                    }
+                })
+                .collect(),
+            density: st
+                .p
+                .iter()
+                .map(|&p| lub.density * sys.phys.rho(p))
+                .collect(),
+            h0: st.h0 * hs,
+            converged: end.converged,
+            termination: end.reason,
+            residual: end.residual,
+            load_error: end.load_error,
+            newton_iterations: stats.newton,
+            linear_iterations: stats.gmres,
+            operator_applications: sys.applies - applies0,
+            mass: balance(problem, &sys, &st),
+            wall_time: t0.elapsed().as_secs_f64(),
+        };
+        if observer(&res).is_break() {
+            return TransientEnd::Stopped { after_step: step };
+        }
+        let qn = q(&st);
+        q2 = Some(std::mem::replace(&mut q1, qn));
+    }
+    TransientEnd::Completed {
+        failed_steps: failed,
+    }
+}
+
+/// The mass balance of the pressurised zone at the evaluated state `st` (kg/s).
+fn balance(problem: &TransientProblem, sys: &System, st: &State) -> MassBalance {
+    let base = &problem.base;
+    let b = base.hertz_half_width;
+    let hs = b * b / base.reduced_radius;
+    let m = residual::mass_flow(&sys.rg, &st.fields(&sys.active));
+    let storage: f64 = match &sys.squeeze {
+        Some(s) => {
+            (0..sys.n())
+                .filter(|&k| sys.active[k] && st.p[k] > 0.0)
+                .map(|k| s.c0 * st.rho[k] * st.h[k] - s.history[k])
+                .sum::<f64>()
+                * sys.area
+        }
+        None => 0.0,
+    };
+    // dimensionless flow (rho/rho0) H dY per unit u_e -> kg/s: rho0 u_e (b^2/R) b
+    let scale = base.lubricant.density * base.entrainment_speed * hs * b;
+    MassBalance {
+        inflow: m.inflow * scale,
+        outflow: m.outflow * scale,
+        side_leakage: m.side_leakage * scale,
+        storage: storage * scale,
+    }
+}
