@@ -472,26 +472,126 @@ fn features_outside_the_domain() {
     );
 }
 
+/// `motion.travel` with the path form moves features[0]'s centre: it needs a feature, on a body
+/// that moves, travelling downstream.
 #[test]
-fn transient_travel_is_unsupported() {
+fn travel_path_form_without_features() {
     let w = Work::new(&edit(
         EHL,
         "slide_to_roll",
         "slide_to_roll = 0.0\ntravel = { from = -1e-3, to = 1e-3, steps = 200 }",
     ));
-    let o = w.ehl(&["run", "case.toml"]);
-    assert_eq!(o.code, 1);
-    assert!(
-        o.stderr
-            .starts_with("error: case.toml: motion.travel: transient runs are not built yet"),
-        "{}",
-        o.stderr
+    w.expect_error(
+        &[],
+        "motion.travel.from",
+        &[
+            "no [[features]]",
+            "motion.travel = { duration = 2e-4, steps = 200 }",
+        ],
     );
     assert!(w.no_outputs());
+}
+
+const PIT: &str =
+    "[[features]]\nkind = \"pit\"\nbody = 2\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\n";
+
+#[test]
+fn travel_path_form_with_features_on_a_body_standing_still() {
+    // SRR = 2 stops body 2, which carries features[0]
+    Work::new(
+        &(edit(
+            EHL,
+            "slide_to_roll",
+            "slide_to_roll = 2.0\ntravel = { from = -1e-3, to = 1e-3, steps = 200 }",
+        ) + PIT),
+    )
+    .expect_error(
+        &[],
+        "motion.travel",
+        &[
+            "features[0] is on body 2, which stands still",
+            "{ duration = 2e-4, steps = 200 }",
+        ],
+    );
+}
+
+#[test]
+fn travel_must_go_downstream() {
+    let text = edit(
+        EHL,
+        "slide_to_roll",
+        "slide_to_roll = 0.0\ntravel = { from = 1e-3, to = -1e-3, steps = 200 }",
+    ) + PIT;
+    Work::new(&text).expect_error(
+        &[],
+        "motion.travel.to",
+        &[
+            "downstream",
+            "to > from",
+            "found from = 0.001 m, to = -0.001 m",
+        ],
+    );
+    // --set reaches into the inline table: the same case with to = from
+    Work::new(&text).expect_error(
+        &["--set", "motion.travel.to=1e-3"],
+        "motion.travel.to",
+        &["to > from"],
+    );
+}
+
+#[test]
+fn travel_forms_are_not_mixed_and_steps_are_bounded() {
     Work::new(&edit(
         EHL,
         "slide_to_roll",
         "slide_to_roll = 0.0\ntravel = { from = -1e-3, to = 1e-3 }",
     ))
     .expect_error(&[], "motion.travel.steps", &["missing"]);
+    Work::new(&edit(
+        EHL,
+        "slide_to_roll",
+        "slide_to_roll = 0.0\ntravel = { duration = 2e-4, from = -1e-3, steps = 20 }",
+    ))
+    .expect_error(&[], "motion.travel.duration", &["not both"]);
+    Work::new(&edit(
+        EHL,
+        "slide_to_roll",
+        "slide_to_roll = 0.0\ntravel = { duration = 2e-4, steps = 200001 }",
+    ))
+    .expect_error(&[], "motion.travel.steps", &["more than the 100000"]);
+    Work::new(&edit(
+        EHL,
+        "slide_to_roll",
+        "slide_to_roll = 0.0\ntravel = { duration = -2e-4, steps = 20 }",
+    ))
+    .expect_error(&[], "motion.travel.duration", &["positive", "-2e-4"]);
+}
+
+#[test]
+fn feature_on_a_moving_body_without_travel_suggests_one() {
+    Work::new(&(EHL.to_string() + PIT)).expect_error(
+        &[],
+        "features[0].body",
+        &["makes the film transient", "add motion.travel"],
+    );
+}
+
+#[test]
+fn output_table_is_checked() {
+    Work::new(&(EHL.to_string() + "[output]\nframe_every = 2\n")).expect_error(
+        &[],
+        "output.frame_every",
+        &["did you mean `output.frames_every`?"],
+    );
+    let text = edit(
+        EHL,
+        "slide_to_roll",
+        "slide_to_roll = 0.0\ntravel = { from = -1e-3, to = 1e-3, steps = 200 }",
+    ) + PIT
+        + "[output]\nsnapshots = [0.0, 2e-3]\n";
+    Work::new(&text).expect_error(
+        &[],
+        "output.snapshots",
+        &["x_p = 0.002 m (snapshots[1]) lies outside the travel"],
+    );
 }

@@ -3,9 +3,9 @@
 //! Every error is an [`Error::Case`] naming the file, the full dotted key (`body1.radius`,
 //! `features[0].x`) and what is wrong; an unknown or misspelt key names the closest valid key
 //! ("did you mean `load.force`?"). An unreadable or malformed file is an [`Error::CaseFile`] with
-//! the TOML parser's line and column. Parts of the format that are not built yet (surface
-//! features, `motion.travel`) are parsed and checked, then refused with [`Error::Unsupported`].
-//! Nothing here panics on user input.
+//! the TOML parser's line and column. Parts of the format that are not built yet (a ball against
+//! a roller, the Hertz-pressure load of an elliptical contact) are parsed and checked, then
+//! refused with [`Error::Unsupported`]. Nothing here panics on user input.
 //!
 //! # Defaults
 //!
@@ -29,9 +29,36 @@
 //! | `solver.mirror_levels` | 1 |
 //! | `solver.free_end_correction` | true |
 //! | `solver.wedge_upwind_order` | 2 (second-order upwind wedge term; 1: first order, as EHL-FBNS) |
+//! | `motion.travel` | absent: a steady run |
+//! | `output.frames_every` | absent (`None`): every step, unless the frames exceed the memory limit |
+//! | `output.snapshots` | `[]` |
+//! | `output.animation` | true |
 //!
 //! `[motion]` and `[lubricant]` are required for `kind = "ehl"` and ignored for `kind = "dry"`
-//! (they are still checked for unknown keys; the resolved case holds `None`).
+//! (they are still checked for unknown keys; the resolved case holds `None`), except
+//! `motion.travel`, which a dry case refuses (a dry contact has no time).
+//!
+//! # Transient runs
+//!
+//! `motion.travel` makes an ehl run transient ([`Travel`]), in one of two forms:
+//!
+//! * `{ from, to, steps }`: the path of x_p, the centre of `features[0]` (m), in `steps` equal
+//!   steps of its body's surface speed u (u1 = u_e (1 + SRR/2) on body 1, u2 = u_e (1 - SRR/2)
+//!   on body 2): dt = (to - from) / steps / u. At t = 0 every body's surface is shifted so that
+//!   features[0]'s centre sits at `from` (the features keep their relative positions). Needs a
+//!   feature, on a body with u > 0, and `to > from` (both surfaces move in +x since |SRR| <= 2).
+//! * `{ duration, steps }`: `duration` s (> 0) in `steps` equal steps, dt = duration / steps;
+//!   the features start where the case puts them, x_p = features[0].x + u t. The form for
+//!   smooth surfaces and for features[0] on a body standing still.
+//!
+//! `steps` is a whole number from 1 to [`MAX_TRAVEL_STEPS`] (100 000). With a travel,
+//! features may lie on a moving body and outside the grid along x (they travel through it);
+//! without one, a feature on a moving body is refused (its film is transient). `[output]`
+//! ([`OutputSpec`]) sets the per-step outputs; its keys are accepted without a travel and used
+//! only by transient runs. Each `output.snapshots` value must lie within the x_p range of the
+//! travel, half a step either side allowed (the path form: `from .. to`; the duration form with
+//! a feature: `features[0].x .. features[0].x + u duration`; without a feature it is not
+//! checked).
 //!
 //! # Load and dimensionless forms
 //!
@@ -70,7 +97,7 @@ pub mod schema;
 pub use model::*;
 pub use overrides::{check_key, parse_value, split_assignment};
 pub use resolve::{
-    DEFAULT_CELLS, DEFAULT_DRY_ITERATIONS, DEFAULT_EHL_ITERATIONS, MAX_CELLS,
+    DEFAULT_CELLS, DEFAULT_DRY_ITERATIONS, DEFAULT_EHL_ITERATIONS, MAX_CELLS, MAX_TRAVEL_STEPS,
     MIN_CELLS_ACROSS_CONTACT,
 };
 

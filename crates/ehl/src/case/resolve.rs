@@ -812,8 +812,8 @@ fn rheology_example(model: &str) -> &'static str {
     }
 }
 
-/// `[motion]` (ehl only). Returns the motion and whether `motion.travel` was given.
-fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
+/// `[motion]` (ehl only), with `motion.travel` when given.
+fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<Motion> {
     let t = sub(top, "motion", "the surface speeds")?.ok_or_else(|| {
         top.missing(
             "motion",
@@ -874,37 +874,200 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<(Motion, bool)> {
             ),
         ));
     }
-    let travel = match s.table("travel", "the travel of the features: { from, to, steps }")? {
-        None => false,
-        Some(tt) => {
-            let key = s.key("travel");
-            let p = Sec {
-                file: s.file,
-                path: &key,
-                table: tt,
-            };
-            let from = p.required_finite("from", "m", "the start position x_p in m")?;
-            let to = p.required_finite("to", "m", "the end position x_p in m")?;
-            required(
-                p.count("steps", "time steps", 1)?,
-                &p,
-                "steps",
-                "the number of time steps, e.g. steps = 200",
-            )?;
-            if from == to {
-                return Err(p.err("to", "must differ from motion.travel.from"));
-            }
-            true
-        }
+    let travel = match s.table(
+        "travel",
+        "the span of a transient run: { from, to, steps } or { duration, steps }",
+    )? {
+        None => None,
+        Some(tt) => Some(travel(&s, tt)?),
     };
-    Ok((
-        Motion {
-            entrainment_speed: u_e,
-            slide_to_roll: srr,
-            travel: None,
-        },
+    Ok(Motion {
+        entrainment_speed: u_e,
+        slide_to_roll: srr,
         travel,
-    ))
+    })
+}
+
+/// Most time steps of a transient run (`motion.travel.steps`), as a sweep has at most 100 000
+/// points: each step is a full EHL solve and a row of timeline.csv (and, kept, a frame of
+/// frames.npz), so time and memory grow with the count; checked before anything is allocated.
+pub const MAX_TRAVEL_STEPS: usize = 100_000;
+
+/// `motion.travel`: `{ from, to, steps }` (the path of features[0]'s centre x_p, m) or
+/// `{ duration, steps }` (s). What needs the features (the path form needs features[0] on a
+/// moving body) is checked by [`check_travel`] once they are read.
+fn travel(s: &Sec, tt: &Table) -> R<Travel> {
+    let key = s.key("travel");
+    let p = Sec {
+        file: s.file,
+        path: &key,
+        table: tt,
+    };
+    let path_keys: Vec<&str> = ["from", "to"].into_iter().filter(|k| p.has(k)).collect();
+    let timed = p.has("duration");
+    if timed && !path_keys.is_empty() {
+        return Err(p.err(
+            "duration",
+            format!(
+                "give the travel either as a path of features[0]'s centre, {{ from, to, steps }} (m), or in time, {{ duration, steps }} (s), not both: found duration with motion.travel.{}",
+                path_keys[0]
+            ),
+        ));
+    }
+    if !timed && path_keys.is_empty() {
+        return Err(s.err(
+            "travel",
+            "gives neither form of the travel: write motion.travel = { from = -1e-3, to = 1e-3, steps = 200 } (the path of features[0]'s centre x_p, m) or motion.travel = { duration = 2e-4, steps = 200 } (s)",
+        ));
+    }
+    // the form with its values; steps (read last, so that a missing `to` is named first) is
+    // filled in below
+    let form = if timed {
+        Travel::Duration {
+            duration: p.required_positive(
+                "duration",
+                "s",
+                "the simulated time in s, e.g. duration = 2e-4",
+            )?,
+            steps: 0,
+        }
+    } else {
+        let from = p.required_finite(
+            "from",
+            "m",
+            "the start position x_p of features[0]'s centre in m, e.g. from = -1e-3",
+        )?;
+        let to = p.required_finite(
+            "to",
+            "m",
+            "the end position x_p of features[0]'s centre in m, e.g. to = 1e-3",
+        )?;
+        if !(to > from) {
+            return Err(p.err(
+                "to",
+                format!(
+                    "must lie downstream of motion.travel.from (to > from): the surfaces move in +x (u1 = u_e (1 + SRR/2) and u2 = u_e (1 - SRR/2) are >= 0), so features[0]'s centre travels towards larger x; found from = {} m, to = {} m",
+                    fmt_num(from),
+                    fmt_num(to)
+                ),
+            ));
+        }
+        Travel::Path { from, to, steps: 0 }
+    };
+    let steps = required(
+        p.count("steps", "time steps", 1)?,
+        &p,
+        "steps",
+        "the number of time steps, e.g. steps = 200",
+    )?;
+    if steps > MAX_TRAVEL_STEPS {
+        return Err(p.err(
+            "steps",
+            format!(
+                "{steps} time steps is more than the {MAX_TRAVEL_STEPS} a transient run may have: each step is a full EHL solve and a row of the timeline (and a frame of frames.npz), so time and memory grow with the count; use fewer, longer steps"
+            ),
+        ));
+    }
+    Ok(match form {
+        Travel::Path { from, to, .. } => Travel::Path { from, to, steps },
+        Travel::Duration { duration, .. } => {
+            if !(duration / steps as f64 > 0.0) {
+                return Err(p.err(
+                    "duration",
+                    format!(
+                        "{} s in {steps} steps gives a time step that rounds to 0 s",
+                        fmt_num(duration)
+                    ),
+                ));
+            }
+            Travel::Duration { duration, steps }
+        }
+    })
+}
+
+/// The x_p range of a travel: features[0]'s centre goes from `start` to `end`; a snapshot may lie
+/// half a step beyond; `source` says where the range comes from, for messages.
+struct Span {
+    start: f64,
+    end: f64,
+    half_step: f64,
+    source: String,
+}
+
+/// The speed of body `body`'s surface (m/s) and its formula, for messages.
+fn body_speed(m: &Motion, body: u8) -> (f64, &'static str) {
+    if body == 1 {
+        (m.u1(), "u1 = u_e (1 + SRR/2)")
+    } else {
+        (m.u2(), "u2 = u_e (1 - SRR/2)")
+    }
+}
+
+/// The checks of `motion.travel` that need the features: the path form moves the centre of
+/// features[0], which must exist and ride on a moving body; the time step must be positive and
+/// finite. Returns the x_p range of the travel when it is known (features[0] exists).
+fn check_travel(file: &str, m: &Motion, t: Travel, features: &[FeatureSpec]) -> R<Option<Span>> {
+    match t {
+        Travel::Path { from, to, steps } => {
+            let Some(f0) = features.first() else {
+                return Err(case_err(
+                    file,
+                    "motion.travel.from",
+                    "the path form { from, to, steps } moves the centre x_p of features[0], but the case has no [[features]]; for smooth surfaces give the travel in time: motion.travel = { duration = 2e-4, steps = 200 } (s)",
+                ));
+            };
+            let (u, formula) = body_speed(m, f0.body);
+            if !(u > 0.0) {
+                return Err(case_err(
+                    file,
+                    "motion.travel",
+                    format!(
+                        "features[0] is on body {}, which stands still ({formula} = {} m/s at motion.slide_to_roll = {}), so its centre cannot travel from motion.travel.from to motion.travel.to; give the travel in time instead: motion.travel = {{ duration = 2e-4, steps = 200 }} (s)",
+                        f0.body,
+                        fmt_num(u),
+                        fmt_num(m.slide_to_roll)
+                    ),
+                ));
+            }
+            let dt = (to - from) / steps as f64 / u;
+            if !(dt > 0.0 && dt.is_finite()) {
+                return Err(case_err(
+                    file,
+                    "motion.travel",
+                    format!(
+                        "the time step (to - from) / steps / {formula} = ({} - {}) m / {steps} / {} m/s = {} s is not a positive, finite time",
+                        fmt_num(to), fmt_num(from), fmt_num(u), fmt_num(dt)
+                    ),
+                ));
+            }
+            Ok(Some(Span {
+                start: from,
+                end: to,
+                half_step: 0.5 * (to - from) / steps as f64,
+                source: "motion.travel.from .. to".into(),
+            }))
+        }
+        Travel::Duration { duration, steps } => {
+            let Some(f0) = features.first() else {
+                return Ok(None);
+            };
+            let (u, formula) = body_speed(m, f0.body);
+            let x0 = f0.feature.centre.0;
+            let span = u * duration;
+            Ok(Some(Span {
+                start: x0,
+                end: x0 + span,
+                half_step: 0.5 * span / steps as f64,
+                source: format!(
+                    "features[0].x + {} t over motion.travel.duration = {} s, with body {} at {formula} = {} m/s",
+                    if f0.body == 1 { "u1" } else { "u2" },
+                    fmt_num(duration),
+                    f0.body,
+                    fmt_num(u)
+                ),
+            }))
+        }
+    }
 }
 
 /// `[alignment]`.
@@ -1464,6 +1627,92 @@ fn features(
     Ok(out)
 }
 
+/// `[output]` (optional; its keys matter only for transient runs). `span`: the x_p range of the
+/// travel, when known: every snapshot must lie within it.
+fn output(top: &Sec, span: Option<Span>) -> R<OutputSpec> {
+    let Some(t) = sub(top, "output", "the outputs of a transient run")? else {
+        return Ok(OutputSpec::default());
+    };
+    let s = Sec {
+        file: top.file,
+        path: "output",
+        table: t,
+    };
+    let frames_every = s.count("frames_every", "keep every k-th step in frames.npz", 1)?;
+    let animation = s.boolean("animation")?.unwrap_or(true);
+    let example = "e.g. snapshots = [-0.5e-3, 0.0, 0.5e-3]";
+    let snapshots = match s.get("snapshots") {
+        None => Vec::new(),
+        Some(Value::Array(items)) => {
+            let mut v = Vec::with_capacity(items.len());
+            for (i, item) in items.iter().enumerate() {
+                let x = match item {
+                    Value::Float(f) => *f,
+                    Value::Integer(n) => *n as f64,
+                    other => {
+                        return Err(s.err(
+                            "snapshots",
+                            format!(
+                                "expected x_p values in m, {example}; snapshots[{i}] is {}",
+                                describe(other)
+                            ),
+                        ))
+                    }
+                };
+                if !x.is_finite() {
+                    return Err(s.err(
+                        "snapshots",
+                        format!(
+                            "snapshots[{i}] must be a finite x_p in m, found {}",
+                            fmt_num(x)
+                        ),
+                    ));
+                }
+                v.push(x);
+            }
+            v
+        }
+        Some(other) => {
+            return Err(s.err(
+                "snapshots",
+                format!(
+                    "expected an array of x_p values in m, {example}; found {}",
+                    describe(other)
+                ),
+            ))
+        }
+    };
+    if let Some(Span {
+        start,
+        end,
+        half_step,
+        source,
+    }) = span
+    {
+        let (lo, hi) = (start.min(end), start.max(end));
+        let tol = half_step.abs();
+        for (i, &x) in snapshots.iter().enumerate() {
+            if x < lo - tol || x > hi + tol {
+                return Err(s.err(
+                    "snapshots",
+                    format!(
+                        "x_p = {} m (snapshots[{i}]) lies outside the travel of features[0]'s centre, x_p = {} .. {} m ({source}), give or take half a step ({} m): a snapshot is written at the step whose x_p is nearest, so it must lie within the travel",
+                        fmt_num(x),
+                        fmt_num(start),
+                        fmt_num(end),
+                        fmt_num(tol)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(OutputSpec {
+        frames_every,
+        snapshots,
+        animation,
+    })
+}
+
 /// Validates the whole tree (unknown keys already rejected) into a [`Case`].
 pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let top = Sec {
@@ -1495,7 +1744,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let alignment = alignment(&top, matches!(c, Contact::Point { .. }))?;
     let (load, b, ky) = load(&top, c, r, e_red)?;
 
-    let (motion, lubricant, travel) = if kind == Kind::Ehl {
+    let (motion, lubricant) = if kind == Kind::Ehl {
         for (k, what) in [
             ("motion", "a [motion] table for kind = \"ehl\" (entrainment_speed in m/s, slide_to_roll)"),
             ("lubricant", "a [lubricant] table for kind = \"ehl\" (viscosity, pressure_viscosity_coefficient, density)"),
@@ -1505,42 +1754,54 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
             }
         }
         let lub = lubricant(&top, e_red)?;
-        let (m, travel) = motion(&top, e_red, r, lub.viscosity)?;
-        (Some(m), Some(lub), travel)
+        let m = motion(&top, e_red, r, lub.viscosity)?;
+        (Some(m), Some(lub))
     } else {
-        (None, None, false)
+        // [motion] is ignored for a dry contact, but a travel asks for a transient run that a
+        // dry contact does not have: refused rather than silently solved at one position
+        let travel_given = top
+            .get("motion")
+            .and_then(|v| v.as_table())
+            .is_some_and(|t| t.contains_key("travel"));
+        if travel_given {
+            return Err(case_err(
+                file,
+                "motion.travel",
+                "a transient run is for kind = \"ehl\" (a lubricated contact); a dry contact has no time and is solved at one position: to move a feature through it, vary the feature's position, e.g. ehl sweep CASE.toml --vary features[0].x=-1e-3:1e-3:21",
+            ));
+        }
+        (None, None)
     };
+    let travel = motion.as_ref().and_then(|m| m.travel);
 
     let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
     let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
-    let features = features(&top, &grid, b, r, infinite, travel)?;
+    let features = features(&top, &grid, b, r, infinite, travel.is_some())?;
+    let mut span = None;
     if let Some(m) = &motion {
-        // a steady run is exact only for features on a body that stands still
-        for (i, f) in features.iter().enumerate() {
-            let u = if f.body == 1 { m.u1() } else { m.u2() };
-            if u != 0.0 && !travel {
-                return Err(Error::Unsupported {
-                    file: file.to_string(),
-                    key: format!("features[{i}].body"),
-                    message: format!(
-                        "a feature on a moving surface (body {} moves at {} m/s) makes the film transient, and transient runs (motion.travel) are not built yet; a steady run with features is exact when their body stands still: slide_to_roll = 2 stops body 2, -2 stops body 1",
-                        f.body,
-                        fmt_num(u)
-                    ),
-                });
+        match travel {
+            // a steady run is exact only for features on a body that stands still
+            None => {
+                for (i, f) in features.iter().enumerate() {
+                    let (u, formula) = body_speed(m, f.body);
+                    if u != 0.0 {
+                        return Err(case_err(
+                            file,
+                            &format!("features[{i}].body"),
+                            format!(
+                                "a feature on a moving surface (body {} moves at {formula} = {} m/s) makes the film transient: add motion.travel = {{ from = -1e-3, to = 1e-3, steps = 200 }} (the path of features[0]'s centre, m) or {{ duration = 2e-4, steps = 200 }} (s) for a transient run; a steady run with features is exact only when their body stands still: slide_to_roll = 2 stops body 2, -2 stops body 1",
+                                f.body,
+                                fmt_num(u)
+                            ),
+                        ));
+                    }
+                }
             }
+            Some(t) => span = check_travel(file, m, t, &features)?,
         }
     }
-    if travel {
-        return Err(Error::Unsupported {
-            file: file.to_string(),
-            key: "motion.travel".into(),
-            message:
-                "transient runs are not built yet; remove motion.travel to solve the steady case"
-                    .into(),
-        });
-    }
+    let output = output(&top, span)?;
     let case = Case {
         title,
         kind,
@@ -1553,7 +1814,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         grid,
         solver,
         features,
-        output: Default::default(),
+        output,
     };
     let (limit, source) = crate::run::memory_limit();
     crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;

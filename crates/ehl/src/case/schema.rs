@@ -46,6 +46,7 @@ const OTHER_KEYS: &[&str] = &[
     "motion.travel.from",
     "motion.travel.to",
     "motion.travel.steps",
+    "motion.travel.duration",
     "lubricant",
     "lubricant.viscosity",
     "lubricant.pressure_viscosity_coefficient",
@@ -91,6 +92,10 @@ const OTHER_KEYS: &[&str] = &[
     "solver.mirror_levels",
     "solver.free_end_correction",
     "solver.wedge_upwind_order",
+    "output",
+    "output.frames_every",
+    "output.snapshots",
+    "output.animation",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

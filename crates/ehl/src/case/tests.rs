@@ -430,12 +430,15 @@ fn features_are_resolved_and_checked() {
 }
 
 #[test]
-fn features_on_a_moving_surface_wait_for_transient_runs() {
+fn features_on_a_moving_surface_need_a_travel() {
     let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\nbody = 2\n";
     let (k, m) = err(&(EHL.to_string() + pit), &[]);
     assert_eq!(k, "features[0].body");
     assert!(
-        m.contains("transient") && m.contains("slide_to_roll = 2"),
+        m.contains("transient")
+            && m.contains("add motion.travel")
+            && m.contains("slide_to_roll = 2")
+            && !m.contains("not built"),
         "{m}"
     );
     // body 2 standing still (SRR = 2): a steady problem
@@ -447,6 +450,397 @@ fn features_on_a_moving_surface_wait_for_transient_runs() {
         &["motion.slide_to_roll=2", "features[0].body=1"],
     );
     assert_eq!(k, "features[0].body");
+    // with a travel, a feature on a moving surface is a transient run
+    let c = parse(
+        &(EHL.to_string() + pit),
+        &["motion.travel={ from = -1e-3, to = 1e-3, steps = 20 }"],
+    )
+    .unwrap();
+    assert_eq!(c.features[0].body, 2);
+    assert!(c.motion.unwrap().travel.is_some());
+}
+
+/// EHL with a pit on body 1 (moving at u1 = u_e = 2.7 m/s in pure rolling).
+fn ehl_pit() -> String {
+    EHL.to_string()
+        + "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\n"
+}
+
+const PATH: &str = "motion.travel={ from = -1e-3, to = 1e-3, steps = 200 }";
+
+fn travel_of(c: &Case) -> Travel {
+    c.motion.as_ref().unwrap().travel.unwrap()
+}
+
+#[test]
+fn travel_path_form() {
+    let c = parse(&ehl_pit(), &[PATH]).unwrap();
+    assert_eq!(
+        travel_of(&c),
+        Travel::Path {
+            from: -1e-3,
+            to: 1e-3,
+            steps: 200
+        }
+    );
+    assert_eq!(travel_of(&c).steps(), 200);
+    assert_eq!(c.output, OutputSpec::default());
+    assert!(c.output.animation && c.output.frames_every.is_none() && c.output.snapshots.is_empty());
+    // the x extent of a feature is not checked with a travel: it is moved to `from` anyway
+    let c = parse(&ehl_pit(), &[PATH, "features[0].x=-5e-3"]).unwrap();
+    assert_eq!(c.features[0].feature.centre.0, -5e-3);
+    // in the file as an inline table or as its own table
+    let text = ehl_pit().replace(
+        "entrainment_speed = 2.7\n",
+        "entrainment_speed = 2.7\ntravel = { from = -0.5e-3, to = 0.5e-3, steps = 10 }\n",
+    );
+    assert_eq!(travel_of(&parse(&text, &[]).unwrap()).steps(), 10);
+    let text = ehl_pit() + "\n[motion.travel]\nfrom = -0.5e-3\nto = 0.5e-3\nsteps = 12\n";
+    assert_eq!(travel_of(&parse(&text, &[]).unwrap()).steps(), 12);
+}
+
+#[test]
+fn travel_duration_form() {
+    // smooth surfaces: only the duration form applies
+    let c = parse(EHL, &["motion.travel={ duration = 2e-4, steps = 50 }"]).unwrap();
+    assert_eq!(
+        travel_of(&c),
+        Travel::Duration {
+            duration: 2e-4,
+            steps: 50
+        }
+    );
+    assert!(c.features.is_empty());
+    // a feature on a body standing still (SRR = 2 stops body 2) with the duration form
+    let c = parse(
+        &ehl_pit(),
+        &[
+            "features[0].body=2",
+            "motion.slide_to_roll=2",
+            "motion.travel={ duration = 1e-4, steps = 8 }",
+        ],
+    )
+    .unwrap();
+    assert_eq!(travel_of(&c).steps(), 8);
+    // integers are numbers
+    let c = parse(EHL, &["motion.travel={ duration = 1, steps = 5 }"]).unwrap();
+    assert_eq!(
+        travel_of(&c),
+        Travel::Duration {
+            duration: 1.0,
+            steps: 5
+        }
+    );
+}
+
+#[test]
+fn travel_overrides_reach_into_the_inline_table() {
+    let text = ehl_pit().replace(
+        "entrainment_speed = 2.7\n",
+        "entrainment_speed = 2.7\ntravel = { from = -1e-3, to = 1e-3, steps = 200 }\n",
+    );
+    let c = parse(
+        &text,
+        &[
+            "motion.travel.steps=50",
+            "motion.travel.to=2e-3",
+            "output.frames_every=2",
+        ],
+    )
+    .unwrap();
+    assert_eq!(
+        travel_of(&c),
+        Travel::Path {
+            from: -1e-3,
+            to: 2e-3,
+            steps: 50
+        }
+    );
+    assert_eq!(c.output.frames_every, Some(2));
+    // a travel created key by key
+    let c = parse(
+        EHL,
+        &["motion.travel.duration=3e-4", "motion.travel.steps=7"],
+    )
+    .unwrap();
+    assert_eq!(
+        travel_of(&c),
+        Travel::Duration {
+            duration: 3e-4,
+            steps: 7
+        }
+    );
+    // switching forms key by key mixes them: the error says so
+    let (k, m) = err(&text, &["motion.travel.duration=1e-4"]);
+    assert_eq!(k, "motion.travel.duration");
+    assert!(
+        m.contains("not both") && m.contains("motion.travel.from"),
+        "{m}"
+    );
+    // an unknown key in the travel names the closest
+    let (k, m) = err(&text, &["motion.travel.step=5"]);
+    assert_eq!(k, "motion.travel.step");
+    assert!(m.contains("did you mean `motion.travel.steps`"), "{m}");
+}
+
+#[test]
+fn travel_refusals_name_the_key() {
+    for (set, key, says) in [
+        (
+            "motion.travel={ from = -1e-3, duration = 1e-4, steps = 5 }",
+            "motion.travel.duration",
+            "not both",
+        ),
+        (
+            "motion.travel={ from = -1e-3, steps = 5 }",
+            "motion.travel.to",
+            "missing",
+        ),
+        (
+            "motion.travel={ to = 1e-3, steps = 5 }",
+            "motion.travel.from",
+            "missing",
+        ),
+        (
+            "motion.travel={ steps = 5 }",
+            "motion.travel",
+            "neither form",
+        ),
+        (
+            "motion.travel={ from = -1e-3, to = 1e-3 }",
+            "motion.travel.steps",
+            "missing",
+        ),
+        (
+            "motion.travel={ duration = 1e-4 }",
+            "motion.travel.steps",
+            "missing",
+        ),
+        (
+            "motion.travel={ from = -1e-3, to = 1e-3, steps = 0 }",
+            "motion.travel.steps",
+            "at least 1",
+        ),
+        (
+            "motion.travel={ from = -1e-3, to = 1e-3, steps = 2.5 }",
+            "motion.travel.steps",
+            "whole number",
+        ),
+        (
+            "motion.travel={ from = -1e-3, to = 1e-3, steps = 100001 }",
+            "motion.travel.steps",
+            "more than the 100000",
+        ),
+        (
+            "motion.travel={ duration = 0.0, steps = 5 }",
+            "motion.travel.duration",
+            "positive",
+        ),
+        (
+            "motion.travel={ duration = -1e-4, steps = 5 }",
+            "motion.travel.duration",
+            "found -1e-4",
+        ),
+        (
+            "motion.travel={ duration = inf, steps = 5 }",
+            "motion.travel.duration",
+            "finite",
+        ),
+        (
+            "motion.travel={ duration = 5e-324, steps = 2 }",
+            "motion.travel.duration",
+            "rounds to 0",
+        ),
+        (
+            "motion.travel={ from = nan, to = 1e-3, steps = 5 }",
+            "motion.travel.from",
+            "finite",
+        ),
+        (
+            "motion.travel={ from = 1e-3, to = -1e-3, steps = 5 }",
+            "motion.travel.to",
+            "downstream",
+        ),
+        (
+            "motion.travel={ from = 1e-3, to = 1e-3, steps = 5 }",
+            "motion.travel.to",
+            "to > from",
+        ),
+        ("motion.travel=5", "motion.travel", "expected a table"),
+    ] {
+        let (k, m) = err(&ehl_pit(), &[set]);
+        assert_eq!(k, key, "{set}: {m}");
+        assert!(m.contains(says), "{set}: {m}");
+    }
+    // the largest count is accepted
+    let c = parse(
+        &ehl_pit(),
+        &["motion.travel={ from = -1e-3, to = 1e-3, steps = 100000 }"],
+    )
+    .unwrap();
+    assert_eq!(travel_of(&c).steps(), 100_000);
+}
+
+#[test]
+fn travel_path_form_needs_a_moving_feature() {
+    // no feature: the path of what?
+    let (k, m) = err(EHL, &[PATH]);
+    assert_eq!(k, "motion.travel.from");
+    assert!(
+        m.contains("no [[features]]") && m.contains("duration"),
+        "{m}"
+    );
+    // features[0] on body 2 standing still (SRR = 2)
+    let (k, m) = err(
+        &ehl_pit(),
+        &[PATH, "features[0].body=2", "motion.slide_to_roll=2"],
+    );
+    assert_eq!(k, "motion.travel");
+    assert!(
+        m.contains("stands still") && m.contains("body 2") && m.contains("{ duration"),
+        "{m}"
+    );
+    // ... and body 1 standing still (SRR = -2)
+    let (k, m) = err(&ehl_pit(), &[PATH, "motion.slide_to_roll=-2"]);
+    assert_eq!(k, "motion.travel");
+    assert!(m.contains("u1 = u_e (1 + SRR/2) = 0 m/s"), "{m}");
+    // only features[0] sets x_p: a second feature on the still body rides along
+    let still =
+        ehl_pit() + "\n[[features]]\nkind = \"dent\"\nwidth = 0.1e-3\ndepth = 1e-8\nbody = 2\n";
+    let c = parse(&still, &[PATH, "motion.slide_to_roll=2"]).unwrap();
+    assert_eq!(c.features.len(), 2);
+}
+
+#[test]
+fn travel_is_for_ehl_only() {
+    let pit = "\n[[features]]\nkind = \"pit\"\nwidth = 0.1e-3\nlength = 0.5e-3\ndepth = 2.5e-8\n";
+    let (k, m) = err(&(ROLLERS.to_string() + pit), &[PATH]);
+    assert_eq!(k, "motion.travel");
+    assert!(m.contains("kind = \"ehl\"") && m.contains("sweep"), "{m}");
+    let (k, _) = err(&ehl_pit(), &[PATH, "kind=dry"]);
+    assert_eq!(k, "motion.travel");
+    // the rest of [motion] is still ignored for a dry contact
+    assert!(parse(ROLLERS, &["motion.entrainment_speed=2.0"]).is_ok());
+}
+
+#[test]
+fn travel_for_an_infinite_line_and_a_ball() {
+    // an infinite line contact with a transverse groove
+    let c = parse(
+        &ehl_pit(),
+        &[
+            "body1.length=inf",
+            "body2.length=inf",
+            "load={ force_per_length = 6e5 }",
+            "features[0].length=inf",
+            PATH,
+        ],
+    )
+    .unwrap();
+    assert!(c.is_infinite_line());
+    assert_eq!(travel_of(&c).steps(), 200);
+    // a ball on a flat with a dent on the ball
+    let ball = BALL.replace("kind = \"dry\"", "kind = \"ehl\"")
+        + "[motion]\nentrainment_speed = 0.5\n[lubricant]\nviscosity = 0.04\npressure_viscosity_coefficient = 15.9e-9\ndensity = 846.0\n[[features]]\nkind = \"dent\"\nwidth = 20e-6\ndepth = 1e-8\n";
+    let c = parse(
+        &ball,
+        &["motion.travel={ from = -0.3e-3, to = 0.3e-3, steps = 40 }"],
+    )
+    .unwrap();
+    assert!(c.is_point());
+    assert_eq!(
+        travel_of(&c),
+        Travel::Path {
+            from: -0.3e-3,
+            to: 0.3e-3,
+            steps: 40
+        }
+    );
+}
+
+#[test]
+fn output_table() {
+    let c = parse(
+        &ehl_pit(),
+        &[
+            PATH,
+            "output={ frames_every = 4, snapshots = [-0.78e-3, 0, 0.56e-3], animation = false }",
+        ],
+    )
+    .unwrap();
+    assert_eq!(
+        c.output,
+        OutputSpec {
+            frames_every: Some(4),
+            snapshots: vec![-0.78e-3, 0.0, 0.56e-3],
+            animation: false
+        }
+    );
+    // [output] without a travel is accepted (its keys matter only for transient runs)
+    let c = parse(ROLLERS, &["output.frames_every=3"]).unwrap();
+    assert_eq!(c.output.frames_every, Some(3));
+    assert!(c.output.animation);
+    let c = parse(EHL, &["output.snapshots=[5.0]"]).unwrap();
+    assert_eq!(c.output.snapshots, vec![5.0]);
+    // the path form: snapshots within from .. to, give or take half a step (5e-6 m here)
+    assert!(parse(
+        &ehl_pit(),
+        &[PATH, "output.snapshots=[-1.004e-3, 1.004e-3]"]
+    )
+    .is_ok());
+    let (k, m) = err(&ehl_pit(), &[PATH, "output.snapshots=[0.0, 1.01e-3]"]);
+    assert_eq!(k, "output.snapshots");
+    assert!(
+        m.contains("x_p = 0.00101 m (snapshots[1])") && m.contains("-0.001 .. 0.001 m"),
+        "{m}"
+    );
+    // the duration form with a feature: x_p = features[0].x + u1 t, 0 .. 2.7e-4 m here
+    let dur = "motion.travel={ duration = 1e-4, steps = 10 }";
+    assert!(parse(&ehl_pit(), &[dur, "output.snapshots=[0, 2.7e-4, 2.8e-4]"]).is_ok());
+    let (k, m) = err(&ehl_pit(), &[dur, "output.snapshots=[3e-4]"]);
+    assert_eq!(k, "output.snapshots");
+    assert!(m.contains("3e-4") && m.contains("u1"), "{m}");
+    // ... and without one there is no x_p range to check
+    assert!(parse(EHL, &[dur, "output.snapshots=[1.0]"]).is_ok());
+    for (set, key, says) in [
+        ("output.frames_every=0", "output.frames_every", "at least 1"),
+        (
+            "output.frames_every=1.5",
+            "output.frames_every",
+            "whole number",
+        ),
+        (
+            "output.animation=\"yes\"",
+            "output.animation",
+            "true or false",
+        ),
+        (
+            "output.snapshots=0.0",
+            "output.snapshots",
+            "expected an array",
+        ),
+        (
+            "output.snapshots=[0.0, \"a\"]",
+            "output.snapshots",
+            "snapshots[1]",
+        ),
+        ("output.snapshots=[inf]", "output.snapshots", "finite"),
+        ("output=3", "output", "expected a table"),
+        (
+            "output.frame_every=2",
+            "output.frame_every",
+            "did you mean `output.frames_every`",
+        ),
+        (
+            "output.snapshot=[0.0]",
+            "output.snapshot",
+            "did you mean `output.snapshots`",
+        ),
+    ] {
+        let (k, m) = err(&ehl_pit(), &[PATH, set]);
+        assert_eq!(k, key, "{set}: {m}");
+        assert!(m.contains(says), "{set}: {m}");
+    }
 }
 
 #[test]
