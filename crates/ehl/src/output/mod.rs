@@ -37,6 +37,7 @@
 //! | `fields.vtk` | [`vtk`] |
 //! | `centerline.csv`, `axial.csv` | [`csv`] |
 //! | `pressure.png`, `film.png`, `centerline.png` | [`plot`] |
+//! | transient runs: `timeline.csv`, `frames.npz`, `timeline.png`, `passage.gif`, `passage.pvd` with `frames/`, `snapshots/` | [`transient`] |
 
 pub mod colormap;
 pub mod csv;
@@ -44,6 +45,7 @@ pub mod npz;
 pub mod plot;
 pub mod summary;
 pub mod synthetic;
+pub mod transient;
 pub mod vtk;
 
 use crate::case::Case;
@@ -90,7 +92,8 @@ pub fn write_locked(lock: &OutputLock, case: &Case, solution: &Solution) -> Resu
     )
 }
 
-/// Checks that a solution can be written: field lengths, finite values, finite summary figures.
+/// Checks that a solution can be written: field lengths, finite values, finite summary figures,
+/// and for a transient run the timeline, frames and snapshots ([`transient::validate`]).
 /// [`write_all`] calls it first; it is public so that callers can check before a long write.
 pub fn validate(dir: &Path, solution: &Solution) -> Result<()> {
     let g = &solution.grid;
@@ -114,29 +117,7 @@ pub fn validate(dir: &Path, solution: &Solution) -> Result<()> {
         }
     }
     for (name, field) in named_fields(solution) {
-        if field.len() != g.len() {
-            return Err(err(format!(
-                "field `{name}` has {} values, the {} x {} grid needs {}",
-                field.len(),
-                g.nx,
-                g.ny,
-                g.len()
-            )));
-        }
-        let allow_pos_inf = name == "film";
-        if let Some(k) = field
-            .iter()
-            .position(|v| v.is_nan() || (v.is_infinite() && !(allow_pos_inf && *v > 0.0)))
-        {
-            let (i, j) = (k % g.nx, k / g.nx);
-            return Err(err(format!(
-                "field `{name}` is {} at cell (i = {i}, j = {j}), x = {:.6e} m, y = {:.6e} m; \
-                 refusing to write a non-finite value",
-                field[k],
-                g.x(i),
-                g.y(j)
-            )));
-        }
+        check_field(g, "", name, field).map_err(&err)?;
     }
     if solution
         .fields
@@ -150,12 +131,60 @@ pub fn validate(dir: &Path, solution: &Solution) -> Result<()> {
         err(format!(
             "summary figure `{key}` is not finite; refusing to write a non-finite value"
         ))
-    })
+    })?;
+    if let Some(t) = &solution.transient {
+        transient::validate(g, t).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Checks one field of a solution (`at`: where it is, e.g. "frame of step 12", empty for the
+/// solution's own fields): `grid.len()` values, none NaN or infinite, except `+inf` in `film`
+/// (no material). The message names the field and the first bad cell.
+pub(crate) fn check_field(
+    g: &crate::grid::Grid,
+    at: &str,
+    name: &str,
+    field: &[f64],
+) -> std::result::Result<(), String> {
+    let at = if at.is_empty() {
+        String::new()
+    } else {
+        format!("{at}: ")
+    };
+    if field.len() != g.len() {
+        return Err(format!(
+            "{at}field `{name}` has {} values, the {} x {} grid needs {}",
+            field.len(),
+            g.nx,
+            g.ny,
+            g.len()
+        ));
+    }
+    let allow_pos_inf = name == "film";
+    if let Some(k) = field
+        .iter()
+        .position(|v| v.is_nan() || (v.is_infinite() && !(allow_pos_inf && *v > 0.0)))
+    {
+        let (i, j) = (k % g.nx, k / g.nx);
+        return Err(format!(
+            "{at}field `{name}` is {} at cell (i = {i}, j = {j}), x = {:.6e} m, y = {:.6e} m; \
+             refusing to write a non-finite value",
+            field[k],
+            g.x(i),
+            g.y(j)
+        ));
+    }
+    Ok(())
 }
 
 /// The fields present in a solution, by their output name, in output order.
 pub(crate) fn named_fields(solution: &Solution) -> Vec<(&'static str, &[f64])> {
-    let f = &solution.fields;
+    named(&solution.fields)
+}
+
+/// The fields present, by their output name, in output order.
+pub(crate) fn named(f: &crate::solution::Fields) -> Vec<(&'static str, &[f64])> {
     let mut v: Vec<(&'static str, &[f64])> = vec![
         ("pressure", &f.pressure[..]),
         ("deformation", &f.deformation[..]),
@@ -183,6 +212,7 @@ fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
         plot::write_film(&tmp.join(FILM_PNG), case, solution)?;
     }
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
+    transient::write(tmp, case, solution)?;
     Ok(())
 }
 

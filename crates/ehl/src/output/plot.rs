@@ -52,7 +52,7 @@ pub fn ensure_font() -> std::result::Result<(), String> {
     .clone()
 }
 
-fn draw_err(path: &Path, e: impl std::fmt::Display) -> Error {
+pub(super) fn draw_err(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output {
         path: path.to_path_buf(),
         message: format!("drawing the picture: {e}"),
@@ -127,17 +127,17 @@ pub fn film_unit(h: f64) -> (&'static str, f64) {
 
 // ---------------------------------------------------------------- layout helpers
 
-fn text_style(size: f64, color: RGBColor) -> TextStyle<'static> {
+pub(super) fn text_style(size: f64, color: RGBColor) -> TextStyle<'static> {
     (FONT, size).into_font().color(&color)
 }
 
-const GREY: RGBColor = RGBColor(90, 90, 90);
-const PRESSURE_COLOR: RGBColor = RGBColor(200, 40, 30);
-const FILM_COLOR: RGBColor = RGBColor(20, 90, 180);
+pub(super) const GREY: RGBColor = RGBColor(90, 90, 90);
+pub(super) const PRESSURE_COLOR: RGBColor = RGBColor(200, 40, 30);
+pub(super) const FILM_COLOR: RGBColor = RGBColor(20, 90, 180);
 const HERTZ_COLOR: RGBColor = RGBColor(60, 60, 60);
 
 /// Title band: the case title (large) and up to two lines of figures; returns the area below.
-fn titled<'a>(
+pub(super) fn titled<'a>(
     root: &DrawingArea<BitMapBackend<'a>, Shift>,
     title: &str,
     lines: &[String],
@@ -161,7 +161,7 @@ fn titled<'a>(
 }
 
 /// `text` shortened with an ellipsis to fit the width of `area` (less 48 px of margins).
-fn fit<DB: DrawingBackend>(
+pub(super) fn fit<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     text: &str,
     size: f64,
@@ -214,13 +214,13 @@ where
 // ---------------------------------------------------------------- maps
 
 /// A field sampled between cell centres (bilinear; nearest where a neighbour is not finite).
-struct Sampler<'a> {
-    g: &'a Grid,
-    v: &'a [f64],
+pub(super) struct Sampler<'a> {
+    pub(super) g: &'a Grid,
+    pub(super) v: &'a [f64],
 }
 
 impl Sampler<'_> {
-    fn at(&self, x: f64, y: f64) -> f64 {
+    pub(super) fn at(&self, x: f64, y: f64) -> f64 {
         let g = self.g;
         let fi = ((x - g.x_min) / g.dx - 0.5).clamp(0.0, (g.nx - 1) as f64);
         let fj = ((y - g.y_min) / g.dy - 0.5).clamp(0.0, (g.ny - 1) as f64);
@@ -443,7 +443,7 @@ struct Axis {
 
 /// Splits a polyline into the pieces inside `range` (in y), with the crossing points added, so
 /// that a clipped curve leaves the frame cleanly.
-fn clip(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
+pub(super) fn clip(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
     let inside = |y: f64| y.is_finite() && y >= range.start && y <= range.end;
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut cur: Vec<(f64, f64)> = Vec::new();
@@ -626,7 +626,7 @@ fn is_dry(case: &Case) -> bool {
     case.kind == Kind::Dry
 }
 
-fn y_axis_label(case: &Case) -> &'static str {
+pub(super) fn y_axis_label(case: &Case) -> &'static str {
     if case.body1.shape == Shape::Roller || case.body2.shape == Shape::Roller {
         "y, roller axis (mm)"
     } else {
@@ -634,7 +634,7 @@ fn y_axis_label(case: &Case) -> &'static str {
     }
 }
 
-fn film_word(case: &Case) -> &'static str {
+pub(super) fn film_word(case: &Case) -> &'static str {
     if is_dry(case) {
         "gap after loading"
     } else {
@@ -643,14 +643,14 @@ fn film_word(case: &Case) -> &'static str {
 }
 
 /// (max, index) of the finite values.
-fn arg_max(v: &[f64]) -> (f64, usize) {
+pub(super) fn arg_max(v: &[f64]) -> (f64, usize) {
     v.iter().enumerate().filter(|(_, x)| x.is_finite()).fold(
         (f64::NEG_INFINITY, 0),
         |a, (k, &x)| if x > a.0 { (x, k) } else { a },
     )
 }
 
-fn arg_min(v: &[f64]) -> (f64, usize) {
+pub(super) fn arg_min(v: &[f64]) -> (f64, usize) {
     v.iter()
         .enumerate()
         .filter(|(_, x)| x.is_finite())
@@ -667,12 +667,12 @@ fn nonempty(lo: f64, hi: f64) -> Range<f64> {
 
 /// A value a picture can place: finite and within ±1e300 (plotters' pixel arithmetic overflows
 /// beyond).
-fn usable(v: f64) -> bool {
+pub(super) fn usable(v: f64) -> bool {
     v.is_finite() && v.abs() <= 1e300
 }
 
 /// [`drawable_range`] of a range.
-fn drawable(r: Range<f64>) -> Range<f64> {
+pub(super) fn drawable(r: Range<f64>) -> Range<f64> {
     drawable_range(r.start, r.end)
 }
 
@@ -1277,7 +1277,7 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-const SERIES_COLORS: [RGBColor; 6] = [
+pub(super) const SERIES_COLORS: [RGBColor; 6] = [
     RGBColor(200, 40, 30),
     RGBColor(20, 90, 180),
     RGBColor(30, 140, 60),
@@ -1288,7 +1288,7 @@ const SERIES_COLORS: [RGBColor; 6] = [
 
 /// The mesh of the line charts (profiles, parameter studies): light grey grid at the major
 /// ticks only, 10 x 8 labels, the fonts of every picture.
-fn line_chart_mesh<'m, 'a, 'b, X, Y, DB>(
+pub(super) fn line_chart_mesh<'m, 'a, 'b, X, Y, DB>(
     m: &'m mut MeshStyle<'a, 'b, X, Y, DB>,
 ) -> &'m mut MeshStyle<'a, 'b, X, Y, DB>
 where
@@ -1306,7 +1306,11 @@ where
 
 /// The corner of the plot area with the fewest data points (in its outer 45 % of x and 35 %
 /// of y), so the legend hides as little of the curves as it can; upper right on a tie.
-fn legend_corner(pts: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> SeriesLabelPosition {
+pub(super) fn legend_corner(
+    pts: &[(f64, f64)],
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> SeriesLabelPosition {
     let fx = |x: f64| (x - xr.0) / (xr.1 - xr.0);
     let fy = |y: f64| (y - yr.0) / (yr.1 - yr.0);
     let count = |right: bool, upper: bool| {

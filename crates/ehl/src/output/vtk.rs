@@ -11,6 +11,7 @@
 use crate::case::Case;
 use crate::solution::Solution;
 use crate::Result;
+use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
@@ -84,4 +85,76 @@ pub fn write(path: &Path, case: &Case, solution: &Solution) -> Result<()> {
     let mut f = std::fs::File::create(path).map_err(|e| super::io_err(path, e))?;
     f.write_all(&bytes).map_err(|e| super::io_err(path, e))?;
     f.sync_all().map_err(|e| super::io_err(path, e))
+}
+
+/// The bytes of a VTK XML rectilinear grid (`.vtr`, `VTKFile` version 1.0, little-endian,
+/// `UInt64` block headers, the arrays appended raw after the XML): the frames of a transient
+/// run (`frames/frame_NNNNN.vtr`, listed by `passage.pvd`). ParaView's collection reader
+/// (`.pvd`) opens only the XML formats (`.vtr`, `.vti`, ...), not the legacy `.vtk` of
+/// [`to_bytes`]; the grid and the point layout are the same as in `fields.vtk` (cell centres,
+/// `z = 0`, x varying fastest). `fields` are `(name, values)` with `grid.len()` values each,
+/// written as `Float64` point data (`+inf` film cells as `inf`); `time_s`, when given, is the
+/// field-data array `TimeValue` that ParaView shows as the data's time.
+pub fn rectilinear_xml(
+    grid: &crate::grid::Grid,
+    fields: &[(&str, &[f64])],
+    time_s: Option<f64>,
+) -> Vec<u8> {
+    let (nx, ny) = (grid.nx, grid.ny);
+    let (xs, ys) = (grid.xs(), grid.ys());
+    let zs = [0.0];
+    let extent = format!("0 {} 0 {} 0 0", nx - 1, ny - 1);
+    // appended blocks in the order of their offsets: the fields, then x, y, z
+    let mut blocks: Vec<&[f64]> = fields.iter().map(|(_, v)| *v).collect();
+    blocks.extend([&xs[..], &ys[..], &zs[..]]);
+    let mut offsets = Vec::with_capacity(blocks.len());
+    let mut at = 0usize;
+    for b in &blocks {
+        offsets.push(at);
+        at += 8 + 8 * b.len();
+    }
+    let mut xml = String::with_capacity(1024);
+    xml.push_str(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"1.0\" \
+         byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    );
+    let _ = writeln!(xml, "  <RectilinearGrid WholeExtent=\"{extent}\">");
+    if let Some(t) = time_s {
+        let _ = writeln!(
+            xml,
+            "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TimeValue\" \
+             NumberOfTuples=\"1\" format=\"ascii\">{t:e}</DataArray>\n    </FieldData>"
+        );
+    }
+    let _ = writeln!(xml, "    <Piece Extent=\"{extent}\">");
+    let first = fields.first().map_or("", |(n, _)| *n);
+    let _ = writeln!(xml, "      <PointData Scalars=\"{first}\">");
+    for (k, (name, _)) in fields.iter().enumerate() {
+        let _ = writeln!(
+            xml,
+            "        <DataArray type=\"Float64\" Name=\"{name}\" format=\"appended\" offset=\"{}\"/>",
+            offsets[k]
+        );
+    }
+    xml.push_str("      </PointData>\n      <CellData/>\n      <Coordinates>\n");
+    for (k, name) in ["x", "y", "z"].iter().enumerate() {
+        let _ = writeln!(
+            xml,
+            "        <DataArray type=\"Float64\" Name=\"{name}\" format=\"appended\" offset=\"{}\"/>",
+            offsets[fields.len() + k]
+        );
+    }
+    xml.push_str(
+        "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n  <AppendedData encoding=\"raw\">\n   _",
+    );
+    let mut out = Vec::with_capacity(xml.len() + at + 64);
+    out.extend_from_slice(xml.as_bytes());
+    for b in &blocks {
+        out.extend_from_slice(&((8 * b.len()) as u64).to_le_bytes());
+        for v in *b {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out.extend_from_slice(b"\n  </AppendedData>\n</VTKFile>\n");
+    out
 }

@@ -1,0 +1,1297 @@
+//! The outputs of a transient run (`Solution::transient` is `Some`); a steady solution writes
+//! none of them. [`write`] puts them into the output folder beside the steady files (which hold
+//! the last step), inside the atomic write of [`super::write_all`].
+//!
+//! | file | content |
+//! | --- | --- |
+//! | `timeline.csv` | one row per step (step 0 is the steady start): the columns of [`TIMELINE_COLUMNS`], numbers in the shortest round-trip form of the other csv files, `converged` as `true` / `false`, an empty `friction_coefficient` cell where the friction integral failed |
+//! | `frames.npz` | `time_s` (k), `x_p_m` (k), `step` (k, int64), `x` (nx), `y` (ny), `pressure` (k, ny, nx) in Pa, `film` (k, ny, nx) in m, for the k frames kept (every `output.frames_every`-th step); `pressure[f, j, i]` is at `(x[i], y[j])` |
+//! | `timeline.png` | stacked panels over a shared x axis (x_p in mm, or time when x_p does not move): maximum pressure (GPa), minimum and central film, friction coefficient (when any step has one); steps that did not converge are shaded red and marked |
+//! | `passage.gif` | with `output.animation` and at least two frames: the pressure map (fixed colour scale over all frames) above the centre-line pressure and film, x_p marked, x_p and time in the title; an infinite line contact (`ny == 1`) has the profile only |
+//! | `frames/frame_NNNNN.vtr`, `passage.pvd` | the frames for ParaView: one VTK XML rectilinear grid per frame (`pressure`, `film`; NNNNN the step), and the collection `passage.pvd` that opens them as one time series (`timestep` = time in s) |
+//! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run |
+//!
+//! Film cells with no material (`+inf`, beyond the end of the shorter roller) are written as
+//! `inf` in `frames.npz` and the `.vtr` frames, exactly as `fields.npz` and `fields.vtk` write
+//! them (NumPy reads them as `inf`; mask with `numpy.isfinite`); the pictures draw them grey
+//! or leave them out of every range.
+//!
+//! `passage.gif` stays a few MB: at most [`GIF_MAX_FRAMES`] frames (evenly subsampled over the
+//! kept frames, the first and the last always in), [`GIF_WIDTH`] x [`GIF_HEIGHT`] px, played in
+//! about 8 s (40 to 200 ms a frame) and looping.
+//!
+//! Memory: `frames.npz` gathers one field of all frames at a time (the pressure, then the film),
+//! so writing it needs at most one more copy of half the frames.
+
+use super::colormap::ColorMap;
+use super::plot::{
+    arg_max, arg_min, clip, draw_err, drawable, drawable_range, ensure_font, film_unit, film_word,
+    fit, fmt_sig, fmt_tick, legend_corner, line_chart_mesh, text_style, titled, y_axis_label,
+    Sampler, FILM_COLOR, GREY, PRESSURE_COLOR, SERIES_COLORS,
+};
+use crate::case::Case;
+use crate::grid::Grid;
+use crate::solution::{Fields, Frame, Solution, StepRecord, Summary, TransientRecord};
+use crate::Result;
+use ndarray::{Array1, Array3};
+use ndarray_npy::NpzWriter;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::fmt::Write as _;
+use std::ops::Range;
+use std::path::Path;
+
+pub const TIMELINE_CSV: &str = "timeline.csv";
+pub const FRAMES_NPZ: &str = "frames.npz";
+pub const TIMELINE_PNG: &str = "timeline.png";
+pub const PASSAGE_GIF: &str = "passage.gif";
+pub const PASSAGE_PVD: &str = "passage.pvd";
+/// The folder of the `.vtr` frames that `passage.pvd` lists.
+pub const FRAMES_DIR: &str = "frames";
+/// The folder of the snapshot sub-folders.
+pub const SNAPSHOTS_DIR: &str = "snapshots";
+
+/// Most frames in `passage.gif`: more kept frames are subsampled evenly.
+pub const GIF_MAX_FRAMES: usize = 120;
+/// Size of `passage.gif` (px).
+pub const GIF_WIDTH: u32 = 800;
+pub const GIF_HEIGHT: u32 = 600;
+
+/// The columns of `timeline.csv`, in order: the interface's nine, then the solver's figures.
+pub const TIMELINE_COLUMNS: [&str; 19] = [
+    "step",
+    "time_s",
+    "x_p_m",
+    "max_pressure_pa",
+    "min_film_m",
+    "central_film_m",
+    "friction_coefficient",
+    "load_error",
+    "converged",
+    "h0_m",
+    "newton_iterations",
+    "linear_iterations",
+    "operator_applications",
+    "mass_balance",
+    "mass_inflow_kg_s",
+    "mass_outflow_kg_s",
+    "side_leakage_kg_s",
+    "mass_storage_kg_s",
+    "wall_time_s",
+];
+
+type DrawResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
+/// Writes every transient output of `solution` into `dir` (an existing folder: the temporary
+/// folder of the atomic write); nothing when `solution.transient` is `None`. Errors name the
+/// file.
+pub fn write(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    let Some(t) = &solution.transient else {
+        return Ok(());
+    };
+    let g = &solution.grid;
+    write_timeline_csv(&dir.join(TIMELINE_CSV), t)?;
+    write_frames_npz(&dir.join(FRAMES_NPZ), g, t)?;
+    write_timeline_png(&dir.join(TIMELINE_PNG), case, t)?;
+    if case.output.animation && t.frames.len() >= 2 {
+        write_passage_gif(&dir.join(PASSAGE_GIF), case, g, t)?;
+    }
+    write_vtk_series(dir, g, t)?;
+    write_snapshots(&dir.join(SNAPSHOTS_DIR), case, solution)?;
+    Ok(())
+}
+
+/// Checks the transient record before anything is written (called by [`super::validate`]):
+/// every timeline figure finite (a friction coefficient may be absent, not NaN), every frame
+/// and snapshot field of `grid.len()` values, finite (the film may be `+inf`, no material),
+/// finite frame times and x_p. The message names the step or the snapshot, the field and the
+/// cell.
+pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), String> {
+    for r in &t.timeline {
+        let mut figures = vec![
+            ("time_s", r.time_s),
+            ("x_p_m", r.x_p_m),
+            ("max_pressure_pa", r.max_pressure_pa),
+            ("min_film_m", r.min_film_m),
+            ("central_film_m", r.central_film_m),
+            ("load_error", r.load_error),
+            ("h0_m", r.h0_m),
+            ("mass_balance", r.mass_balance),
+            ("mass_inflow_kg_s", r.mass_inflow_kg_s),
+            ("mass_outflow_kg_s", r.mass_outflow_kg_s),
+            ("side_leakage_kg_s", r.side_leakage_kg_s),
+            ("mass_storage_kg_s", r.mass_storage_kg_s),
+            ("wall_time_s", r.wall_time_s),
+        ];
+        if let Some(f) = r.friction_coefficient {
+            figures.push(("friction_coefficient", f));
+        }
+        if let Some((name, v)) = figures.into_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(format!(
+                "{TIMELINE_CSV}: step {}: `{name}` is {v}; refusing to write a non-finite value",
+                r.step
+            ));
+        }
+    }
+    for f in &t.frames {
+        let at = format!("frame of step {}", f.step);
+        for (name, v) in [("time_s", f.time_s), ("x_p_m", f.x_p_m)] {
+            if !v.is_finite() {
+                return Err(format!(
+                    "{at}: `{name}` is {v}; refusing to write a non-finite value"
+                ));
+            }
+        }
+        super::check_field(grid, &at, "pressure", &f.pressure)?;
+        super::check_field(grid, &at, "film", &f.film)?;
+    }
+    for (x_p, step, fields) in &t.snapshots {
+        let at = format!("snapshot at x_p = {x_p:e} m (step {step})");
+        if !x_p.is_finite() {
+            return Err(format!("{at}: x_p is not finite"));
+        }
+        for (name, field) in super::named(fields) {
+            super::check_field(grid, &at, name, field)?;
+        }
+        if fields
+            .film
+            .as_ref()
+            .is_some_and(|f| f.iter().all(|v| !v.is_finite()))
+        {
+            return Err(format!("{at}: field `film` has no finite value"));
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- timeline.csv
+
+/// The text of `timeline.csv`.
+pub fn timeline_csv(t: &TransientRecord) -> String {
+    let mut s = String::with_capacity(256 * (t.timeline.len() + 1));
+    s.push_str(&TIMELINE_COLUMNS.join(","));
+    s.push('\n');
+    for r in &t.timeline {
+        let friction = r
+            .friction_coefficient
+            .map(|f| format!("{f:e}"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "{},{:e},{:e},{:e},{:e},{:e},{friction},{:e},{},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+            r.step,
+            r.time_s,
+            r.x_p_m,
+            r.max_pressure_pa,
+            r.min_film_m,
+            r.central_film_m,
+            r.load_error,
+            r.converged,
+            r.h0_m,
+            r.newton_iterations,
+            r.linear_iterations,
+            r.operator_applications,
+            r.mass_balance,
+            r.mass_inflow_kg_s,
+            r.mass_outflow_kg_s,
+            r.side_leakage_kg_s,
+            r.mass_storage_kg_s,
+            r.wall_time_s,
+        );
+    }
+    s
+}
+
+/// Writes `timeline.csv` to `path`.
+pub fn write_timeline_csv(path: &Path, t: &TransientRecord) -> Result<()> {
+    std::fs::write(path, timeline_csv(t)).map_err(|e| super::io_err(path, e))
+}
+
+// ---------------------------------------------------------------- frames.npz
+
+/// Writes `frames.npz` to `path` (see the module documentation).
+pub fn write_frames_npz(path: &Path, grid: &Grid, t: &TransientRecord) -> Result<()> {
+    let err = |e: &dyn std::fmt::Display| super::io_err(path, e);
+    let frames = &t.frames;
+    let (k, n) = (frames.len(), grid.len());
+    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
+    let mut npz = NpzWriter::new(std::io::BufWriter::new(file));
+    let per_frame = |f: fn(&Frame) -> f64| Array1::from_iter(frames.iter().map(f));
+    npz.add_array("time_s", &per_frame(|f| f.time_s))
+        .map_err(|e| err(&e))?;
+    npz.add_array("x_p_m", &per_frame(|f| f.x_p_m))
+        .map_err(|e| err(&e))?;
+    npz.add_array(
+        "step",
+        &Array1::from_iter(frames.iter().map(|f| f.step as i64)),
+    )
+    .map_err(|e| err(&e))?;
+    npz.add_array("x", &Array1::from(grid.xs()))
+        .map_err(|e| err(&e))?;
+    npz.add_array("y", &Array1::from(grid.ys()))
+        .map_err(|e| err(&e))?;
+    let fields: [(&str, fn(&Frame) -> &[f64]); 2] =
+        [("pressure", |f| &f.pressure), ("film", |f| &f.film)];
+    for (name, get) in fields {
+        let mut v = Vec::with_capacity(k * n);
+        for f in frames {
+            let a = get(f);
+            if a.len() != n {
+                return Err(err(&format!(
+                    "frame of step {}: field `{name}` has {} values, the grid needs {n}",
+                    f.step,
+                    a.len()
+                )));
+            }
+            v.extend_from_slice(a);
+        }
+        let a = Array3::from_shape_vec((k, grid.ny, grid.nx), v)
+            .map_err(|e| err(&format!("field `{name}`: {e}")))?;
+        npz.add_array(name, &a).map_err(|e| err(&e))?;
+    }
+    let w = npz.finish().map_err(|e| err(&e))?;
+    w.into_inner()
+        .map_err(|e| err(&e.error().to_string()))?
+        .sync_all()
+        .map_err(|e| err(&e))
+}
+
+// ---------------------------------------------------------------- VTK series
+
+/// The name of a frame's `.vtr` file inside [`FRAMES_DIR`].
+pub fn frame_file_name(step: usize) -> String {
+    format!("frame_{step:05}.vtr")
+}
+
+/// The text of `passage.pvd`: a ParaView collection of the frames, `timestep` = time (s).
+pub fn pvd(t: &TransientRecord) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" \
+         byte_order=\"LittleEndian\">\n  <Collection>\n",
+    );
+    for f in &t.frames {
+        let _ = writeln!(
+            s,
+            "    <DataSet timestep=\"{:e}\" group=\"\" part=\"0\" file=\"{FRAMES_DIR}/{}\"/>",
+            f.time_s,
+            frame_file_name(f.step)
+        );
+    }
+    s.push_str("  </Collection>\n</VTKFile>\n");
+    s
+}
+
+/// Writes `frames/frame_NNNNN.vtr` for every frame and `passage.pvd` into `dir`; nothing when
+/// there is no frame.
+pub fn write_vtk_series(dir: &Path, grid: &Grid, t: &TransientRecord) -> Result<()> {
+    if t.frames.is_empty() {
+        return Ok(());
+    }
+    let folder = dir.join(FRAMES_DIR);
+    std::fs::create_dir_all(&folder).map_err(|e| super::io_err(&folder, e))?;
+    for f in &t.frames {
+        let path = folder.join(frame_file_name(f.step));
+        let bytes = super::vtk::rectilinear_xml(
+            grid,
+            &[("pressure", &f.pressure), ("film", &f.film)],
+            Some(f.time_s),
+        );
+        std::fs::write(&path, bytes).map_err(|e| super::io_err(&path, e))?;
+    }
+    let path = dir.join(PASSAGE_PVD);
+    std::fs::write(&path, pvd(t)).map_err(|e| super::io_err(&path, e))
+}
+
+// ---------------------------------------------------------------- snapshots
+
+/// The sub-folder name of a snapshot at `x_p_m` (m): `xp_<x_p in mm, 3 decimals>mm`, e.g.
+/// `xp_-0.780mm`, `xp_0.000mm`, `xp_0.560mm`.
+pub fn snapshot_folder_name(x_p_m: f64) -> String {
+    let mut s = format!("{:.3}", x_p_m * 1e3);
+    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+        s.remove(0);
+    }
+    format!("xp_{s}mm")
+}
+
+/// The timeline row of `step`, if any.
+fn row_of(t: &TransientRecord, step: usize) -> Option<&StepRecord> {
+    t.timeline
+        .iter()
+        .find(|r| r.step == step)
+        .or_else(|| t.timeline.get(step).filter(|r| r.step == step))
+}
+
+/// A steady-looking (case, solution) for the snapshot `(x_p, step, fields)` of a transient
+/// solution, for the steady writers: the fields of that step, the summary figures of that step
+/// (maximum pressure, films and their places from the fields; convergence, load error, friction
+/// and mass flows from its timeline row; the Hertz figures of the run), and the case title
+/// prefixed with the snapshot's x_p, step and time.
+pub fn snapshot_solution(
+    case: &Case,
+    solution: &Solution,
+    x_p: f64,
+    step: usize,
+    fields: &Fields,
+) -> (Case, Solution) {
+    let g = solution.grid;
+    let row = solution.transient.as_ref().and_then(|t| row_of(t, step));
+    let last = &solution.summary;
+    let (pm, kp) = arg_max(&fields.pressure);
+    let mut summary = Summary {
+        converged: row.map_or(last.converged, |r| r.converged),
+        termination: format!("snapshot of the transient run at step {step}"),
+        iterations: row.map_or(0, |r| r.newton_iterations),
+        residual: None,
+        wall_time_s: row.map_or(0.0, |r| r.wall_time_s),
+        load_n: fields.pressure.iter().sum::<f64>() * g.cell_area(),
+        load_error: row.map_or(last.load_error, |r| r.load_error),
+        max_pressure_pa: if pm.is_finite() { pm } else { 0.0 },
+        max_pressure_at_m: [g.x(kp % g.nx), g.y(kp / g.nx)],
+        hertz_pressure_pa: last.hertz_pressure_pa,
+        hertz_half_width_m: last.hertz_half_width_m,
+        friction_coefficient: row.and_then(|r| r.friction_coefficient),
+        friction_requested: last.friction_requested,
+        ..Summary::default()
+    };
+    if let Some(r) = row {
+        summary.mass_inflow_kg_s = Some(r.mass_inflow_kg_s);
+        summary.mass_outflow_kg_s = Some(r.mass_outflow_kg_s);
+        summary.side_leakage_kg_s = Some(r.side_leakage_kg_s);
+    }
+    if let Some(film) = &fields.film {
+        let (hmin, k) = arg_min(film);
+        if hmin.is_finite() {
+            summary.min_film_m = Some(hmin);
+            summary.min_film_at_m = Some([g.x(k % g.nx), g.y(k / g.nx)]);
+        }
+        let centre = g.idx(
+            nearest(g.nx, |i| g.x(i), 0.0),
+            nearest(g.ny, |j| g.y(j), 0.0),
+        );
+        summary.central_film_m = row
+            .map(|r| r.central_film_m)
+            .or(Some(film[centre]))
+            .filter(|h| h.is_finite());
+        let j = super::centre_row(solution);
+        let (hc, _) = arg_min(&film[j * g.nx..(j + 1) * g.nx]);
+        summary.centerline_min_film_m = Some(hc).filter(|h| h.is_finite());
+    }
+    let at_x = row.map_or(x_p, |r| r.x_p_m);
+    let mut label = format!("x_p = {} mm", fmt_sig_or_zero(at_x * 1e3, 3));
+    if (at_x - x_p).abs() > 5e-7 {
+        label += &format!(" (asked {} mm)", fmt_sig_or_zero(x_p * 1e3, 3));
+    }
+    label += &format!(", step {step}");
+    if let Some(r) = row {
+        let (unit, scale) = time_unit(r.time_s);
+        label += &format!(", t = {} {unit}", fmt_sig_or_zero(r.time_s * scale, 4));
+    }
+    let mut c = case.clone();
+    c.title = format!("{label} — {}", case.title.trim());
+    (
+        c,
+        Solution {
+            grid: g,
+            fields: fields.clone(),
+            summary,
+            transient: None,
+        },
+    )
+}
+
+/// Writes `snapshots/<xp folder>/` for every snapshot of the record into `dir` (the
+/// `snapshots` folder, created when there is at least one). Two snapshots whose names round to
+/// the same folder get the step appended to the second (`xp_0.000mm_step00040`).
+pub fn write_snapshots(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    let Some(t) = &solution.transient else {
+        return Ok(());
+    };
+    if t.snapshots.is_empty() {
+        return Ok(());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| super::io_err(dir, e))?;
+    let mut used: Vec<String> = Vec::new();
+    for (x_p, step, fields) in &t.snapshots {
+        let base = snapshot_folder_name(*x_p);
+        let mut name = base.clone();
+        let mut n = 1;
+        while used.contains(&name) {
+            name = if n == 1 {
+                format!("{base}_step{step:05}")
+            } else {
+                format!("{base}_step{step:05}_{n}")
+            };
+            n += 1;
+        }
+        used.push(name.clone());
+        let sub = dir.join(&name);
+        std::fs::create_dir(&sub).map_err(|e| super::io_err(&sub, e))?;
+        let (c, s) = snapshot_solution(case, solution, *x_p, *step, fields);
+        super::npz::write(&sub.join(super::FIELDS_NPZ), &s)?;
+        super::csv::write_centerline(&sub.join(super::CENTERLINE_CSV), &s)?;
+        super::csv::write_axial(&sub.join(super::AXIAL_CSV), &s)?;
+        super::plot::write_pressure(&sub.join(super::PRESSURE_PNG), &c, &s)?;
+        if s.fields.film.is_some() {
+            super::plot::write_film(&sub.join(super::FILM_PNG), &c, &s)?;
+        }
+        super::plot::write_centerline(&sub.join(super::CENTERLINE_PNG), &c, &s)?;
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- shared helpers
+
+fn nearest(n: usize, coord: impl Fn(usize) -> f64, target: f64) -> usize {
+    (0..n)
+        .min_by(|&a, &b| {
+            (coord(a) - target)
+                .abs()
+                .total_cmp(&(coord(b) - target).abs())
+        })
+        .unwrap_or(0)
+}
+
+/// [`fmt_sig`], with 0 written `0`.
+fn fmt_sig_or_zero(v: f64, sig: usize) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else {
+        fmt_sig(v, sig)
+    }
+}
+
+/// Display unit for times up to `t` (s): µs, ms or s.
+fn time_unit(t: f64) -> (&'static str, f64) {
+    let t = t.abs();
+    if t < 1e-3 {
+        ("µs", 1e6)
+    } else if t < 1.0 {
+        ("ms", 1e3)
+    } else {
+        ("s", 1.0)
+    }
+}
+
+/// The x axis of the timeline: x_p (mm) when it moves over the run, otherwise time.
+struct TimeAxis {
+    use_xp: bool,
+    scale: f64,
+    label: String,
+}
+
+impl TimeAxis {
+    fn new(case: &Case, rows: &[StepRecord]) -> TimeAxis {
+        let (lo, hi) = rows
+            .iter()
+            .map(|r| r.x_p_m)
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            });
+        if hi - lo > 1e-12 {
+            let what = if case.features.is_empty() {
+                "travel of the surface"
+            } else {
+                "centre of the first feature"
+            };
+            TimeAxis {
+                use_xp: true,
+                scale: 1e3,
+                label: format!("x_p, {what} (mm)"),
+            }
+        } else {
+            let t_end = rows.iter().map(|r| r.time_s.abs()).fold(0.0, f64::max);
+            let (unit, scale) = time_unit(t_end);
+            TimeAxis {
+                use_xp: false,
+                scale,
+                label: format!("time ({unit})"),
+            }
+        }
+    }
+
+    fn x(&self, r: &StepRecord) -> f64 {
+        if self.use_xp {
+            r.x_p_m * self.scale
+        } else {
+            r.time_s * self.scale
+        }
+    }
+}
+
+// ---------------------------------------------------------------- timeline.png
+
+const TIMELINE_WIDTH: u32 = 1000;
+const NOT_CONVERGED: RGBColor = RGBColor(220, 20, 20);
+const MIN_FILM_COLOR: RGBColor = SERIES_COLORS[2];
+const FRICTION_COLOR: RGBColor = SERIES_COLORS[3];
+
+/// One curve of a timeline panel (NaN where a step has no value).
+struct Line {
+    label: String,
+    color: RGBColor,
+    pts: Vec<(f64, f64)>,
+}
+
+struct Panel {
+    y_label: String,
+    range: Range<f64>,
+    lines: Vec<Line>,
+}
+
+/// Renders a picture of `size` into `path` (a PNG), with the embedded font; the error names
+/// the file.
+fn render_png(
+    path: &Path,
+    size: (u32, u32),
+    f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
+) -> Result<()> {
+    ensure_font().map_err(|e| draw_err(path, e))?;
+    let root = BitMapBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
+    f(&root).map_err(|e| draw_err(path, e))?;
+    root.present().map_err(|e| draw_err(path, e))?;
+    drop(root);
+    match std::fs::metadata(path) {
+        Ok(m) if m.len() > 0 => Ok(()),
+        _ => Err(draw_err(path, "no picture was written")),
+    }
+}
+
+/// Splits a polyline at its non-finite points.
+fn pieces(pts: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut out = vec![];
+    let mut cur = vec![];
+    for &(x, y) in pts {
+        if x.is_finite() && y.is_finite() {
+            cur.push((x, y));
+        } else if !cur.is_empty() {
+            out.push(std::mem::take(&mut cur));
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out
+}
+
+/// Top of a magnitude axis: 12 % above the largest finite value (0..1 when there is none).
+fn top_of(values: impl Iterator<Item = f64>) -> Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((0.0f64, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let hi = if hi.is_finite() { hi } else { 1.0 };
+    let lo = if lo < 0.0 { lo * 1.12 } else { 0.0 };
+    drawable_range(lo, hi + 0.12 * (hi - lo))
+}
+
+/// Writes `timeline.png`: see the module documentation.
+pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Result<()> {
+    let rows = &t.timeline;
+    let axis = TimeAxis::new(case, rows);
+    let xs: Vec<f64> = rows.iter().map(|r| axis.x(r)).collect();
+    let (x0, x1) = xs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let x_range = drawable_range(x0, x1);
+    // pressure
+    let mut panels = vec![Panel {
+        y_label: "maximum pressure (GPa)".into(),
+        range: top_of(rows.iter().map(|r| r.max_pressure_pa * 1e-9)),
+        lines: vec![Line {
+            label: "maximum pressure".into(),
+            color: PRESSURE_COLOR,
+            pts: xs
+                .iter()
+                .zip(rows)
+                .map(|(&x, r)| (x, r.max_pressure_pa * 1e-9))
+                .collect(),
+        }],
+    }];
+    // films
+    let h_top = rows
+        .iter()
+        .flat_map(|r| [r.min_film_m, r.central_film_m])
+        .filter(|h| h.is_finite())
+        .fold(0.0, f64::max);
+    let (unit, scale) = film_unit(if h_top > 0.0 { h_top } else { 1e-6 });
+    let word = film_word(case);
+    panels.push(Panel {
+        y_label: format!("{word} ({unit})"),
+        range: top_of(
+            rows.iter()
+                .flat_map(|r| [r.min_film_m * scale, r.central_film_m * scale]),
+        ),
+        lines: vec![
+            Line {
+                label: "central film (x = 0, y = 0)".into(),
+                color: FILM_COLOR,
+                pts: xs
+                    .iter()
+                    .zip(rows)
+                    .map(|(&x, r)| (x, r.central_film_m * scale))
+                    .collect(),
+            },
+            Line {
+                label: "minimum film".into(),
+                color: MIN_FILM_COLOR,
+                pts: xs
+                    .iter()
+                    .zip(rows)
+                    .map(|(&x, r)| (x, r.min_film_m * scale))
+                    .collect(),
+            },
+        ],
+    });
+    // friction
+    if rows.iter().any(|r| r.friction_coefficient.is_some()) {
+        let mu: Vec<f64> = rows
+            .iter()
+            .map(|r| r.friction_coefficient.unwrap_or(f64::NAN))
+            .collect();
+        panels.push(Panel {
+            y_label: "friction coefficient".into(),
+            range: top_of(mu.iter().copied()),
+            lines: vec![Line {
+                label: if mu.iter().all(|m| m.is_finite()) {
+                    "friction coefficient".into()
+                } else {
+                    "friction coefficient (gaps: not computed)".into()
+                },
+                color: FRICTION_COLOR,
+                pts: xs.iter().copied().zip(mu).collect(),
+            }],
+        });
+    }
+    let bad: Vec<(f64, usize)> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| !r.converged)
+        .map(|(k, r)| (axis.x(r), k))
+        .collect();
+    // the half-width of a non-converged band: half the mean step along the axis
+    let half = if xs.len() > 1 {
+        0.5 * (x_range.end - x_range.start) / (xs.len() - 1) as f64
+    } else {
+        0.01 * (x_range.end - x_range.start)
+    };
+    let lines = timeline_lines(case, t, &axis, &bad);
+    let height = 120 + 24 * lines.len() as u32 + 270 * panels.len() as u32;
+    render_png(path, (TIMELINE_WIDTH, height), |root| {
+        let area = titled(root, &case.title, &lines)?;
+        let (_, h) = area.dim_in_pixel();
+        let n = panels.len();
+        // every panel gets the same plot height; the bottom one also holds the x labels
+        let bottom_extra = 54u32;
+        let each = (h - bottom_extra) / n as u32;
+        let mut rest = area;
+        for (k, panel) in panels.iter().enumerate() {
+            let last = k + 1 == n;
+            let (this, below) = if last {
+                (rest.clone(), rest.clone())
+            } else {
+                rest.split_vertically(each)
+            };
+            draw_panel(
+                &this,
+                panel,
+                x_range.clone(),
+                last.then_some(axis.label.as_str()),
+                &bad,
+                half,
+                k == 0,
+            )?;
+            rest = below;
+        }
+        Ok(())
+    })
+}
+
+/// The two lines under the title of `timeline.png`.
+fn timeline_lines(
+    case: &Case,
+    t: &TransientRecord,
+    axis: &TimeAxis,
+    bad: &[(f64, usize)],
+) -> Vec<String> {
+    let rows = &t.timeline;
+    let kind = if case.is_infinite_line() {
+        "transient EHL, infinite line contact"
+    } else {
+        "transient EHL"
+    };
+    let steps = rows.iter().map(|r| r.step).max().unwrap_or(0);
+    let (tu, ts) = time_unit(t.dt_s * steps.max(1) as f64);
+    let mut l1 = format!(
+        "{kind}: {steps} time steps of {} {tu}",
+        fmt_sig_or_zero(t.dt_s * ts, 3)
+    );
+    if let (Some(a), Some(b)) = (rows.first(), rows.last()) {
+        if axis.use_xp {
+            l1 += &format!(
+                ", x_p from {} to {} mm",
+                fmt_sig_or_zero(a.x_p_m * 1e3, 3),
+                fmt_sig_or_zero(b.x_p_m * 1e3, 3)
+            );
+        } else {
+            l1 += &format!(
+                ", t from {} to {} {tu}",
+                fmt_sig_or_zero(a.time_s * ts, 3),
+                fmt_sig_or_zero(b.time_s * ts, 3)
+            );
+        }
+    }
+    let mut l2 = String::new();
+    let pk = rows
+        .iter()
+        .filter(|r| r.max_pressure_pa.is_finite())
+        .max_by(|a, b| a.max_pressure_pa.total_cmp(&b.max_pressure_pa));
+    let hk = rows
+        .iter()
+        .filter(|r| r.min_film_m.is_finite())
+        .min_by(|a, b| a.min_film_m.total_cmp(&b.min_film_m));
+    let at = |r: &StepRecord| {
+        if axis.use_xp {
+            format!("x_p = {} mm", fmt_sig_or_zero(r.x_p_m * 1e3, 3))
+        } else {
+            format!("t = {} {tu}", fmt_sig_or_zero(r.time_s * ts, 3))
+        }
+    };
+    if let Some(r) = pk {
+        l2 += &format!(
+            "highest pressure {} GPa at {}",
+            fmt_sig(r.max_pressure_pa * 1e-9, 4),
+            at(r)
+        );
+    }
+    if let Some(r) = hk {
+        let (u, s) = film_unit(r.min_film_m);
+        l2 += &format!(
+            ";  thinnest film {} {u} at {}",
+            fmt_sig(r.min_film_m * s, 3),
+            at(r)
+        );
+    }
+    l2 += &if bad.is_empty() {
+        ";  every step converged".to_string()
+    } else {
+        format!(";  {} step(s) NOT CONVERGED (red)", bad.len())
+    };
+    vec![l1, l2.trim_start_matches(";  ").to_string()]
+}
+
+fn draw_panel(
+    area: &DrawingArea<BitMapBackend, Shift>,
+    panel: &Panel,
+    x_range: Range<f64>,
+    x_desc: Option<&str>,
+    bad: &[(f64, usize)],
+    half: f64,
+    first: bool,
+) -> DrawResult<()> {
+    let xr = drawable(x_range);
+    let yr = drawable(panel.range.clone());
+    let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
+    let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+    let no_label = |_: &f64| String::new();
+    let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+    let bottom = x_desc.is_some();
+    let mut chart = ChartBuilder::on(area)
+        .margin_left(10)
+        .margin_right(30)
+        .margin_top(10)
+        .margin_bottom(if bottom { 10 } else { 4 })
+        .x_label_area_size(if bottom { 62 } else { 10 })
+        .y_label_area_size(96)
+        .build_cartesian_2d(xr.clone(), yr.clone())?;
+    {
+        let mut mesh = chart.configure_mesh();
+        line_chart_mesh(&mut mesh)
+            .y_label_formatter(&y_fmt)
+            .y_desc(panel.y_label.as_str());
+        if let Some(d) = x_desc {
+            mesh.x_label_formatter(&x_fmt).x_desc(d);
+        } else {
+            mesh.x_label_formatter(&no_label);
+        }
+        mesh.draw()?;
+    }
+    // non-converged steps: a red band over the panel height and a marker on every curve
+    let band = ShapeStyle::from(&NOT_CONVERGED.mix(0.16)).filled();
+    for &(x, _) in bad {
+        let a = (x - half).max(xr.start);
+        let b = (x + half).min(xr.end);
+        if a < b {
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(a, yr.start), (b, yr.end)],
+                band,
+            )))?;
+        }
+    }
+    let mut all = vec![];
+    for line in &panel.lines {
+        let style = ShapeStyle::from(&line.color).stroke_width(3);
+        let mut labelled = false;
+        for piece in pieces(&line.pts) {
+            all.extend(piece.iter().copied());
+            for part in clip(&piece, &yr) {
+                let anno = if part.len() == 1 {
+                    chart.draw_series(std::iter::once(Circle::new(
+                        part[0],
+                        3,
+                        ShapeStyle::from(&line.color).filled(),
+                    )))?
+                } else {
+                    chart.draw_series(LineSeries::new(part, style))?
+                };
+                if !labelled {
+                    anno.label(line.label.as_str())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], style));
+                    labelled = true;
+                }
+            }
+        }
+        for &(_, k) in bad {
+            if let Some(&(x, y)) = line.pts.get(k) {
+                if x.is_finite() && y.is_finite() && y >= yr.start && y <= yr.end {
+                    chart.draw_series([
+                        Circle::new((x, y), 6, ShapeStyle::from(&NOT_CONVERGED).filled()),
+                        Circle::new((x, y), 6, ShapeStyle::from(&BLACK).stroke_width(1)),
+                    ])?;
+                }
+            }
+        }
+    }
+    if first && !bad.is_empty() {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label("step not converged")
+            .legend(|(x, y)| {
+                EmptyElement::at((x, y))
+                    + Rectangle::new(
+                        [(0, -7), (21, 7)],
+                        ShapeStyle::from(&NOT_CONVERGED.mix(0.16)).filled(),
+                    )
+                    + Circle::new((10, 0), 5, ShapeStyle::from(&NOT_CONVERGED).filled())
+            });
+    }
+    if all.is_empty() {
+        let plot = chart.plotting_area().strip_coord_spec();
+        let (pw, ph) = plot.dim_in_pixel();
+        plot.draw_text(
+            "no value to draw",
+            &text_style(18.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
+            (pw as i32 / 2, ph as i32 / 2),
+        )?;
+    }
+    chart
+        .configure_series_labels()
+        .position(legend_corner(&all, (xr.start, xr.end), (yr.start, yr.end)))
+        .margin(10)
+        .legend_area_size(36)
+        .label_font(text_style(16.0, BLACK))
+        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
+        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+        .draw()?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------- passage.gif
+
+/// The frames `passage.gif` shows out of `n` kept frames: all of them up to `cap`, otherwise
+/// `cap` evenly spaced ones, the first and the last included.
+pub fn gif_frame_indices(n: usize, cap: usize) -> Vec<usize> {
+    if n <= cap {
+        return (0..n).collect();
+    }
+    if cap < 2 {
+        return (0..cap).collect();
+    }
+    let mut v: Vec<usize> = (0..cap)
+        .map(|k| ((k as f64) * (n - 1) as f64 / (cap - 1) as f64).round() as usize)
+        .collect();
+    v.dedup();
+    v
+}
+
+/// What every frame of the animation shares: fixed axes and colour scale.
+struct Passage<'a> {
+    case: &'a Case,
+    grid: &'a Grid,
+    t: &'a TransientRecord,
+    /// centre row
+    j: usize,
+    /// colour scale and profile axis top (GPa)
+    p_top: f64,
+    /// film axis top (display units), unit and scale
+    h_top: f64,
+    h_unit: &'static str,
+    h_scale: f64,
+    time_unit: (&'static str, f64),
+    last_step: usize,
+}
+
+impl<'a> Passage<'a> {
+    fn new(case: &'a Case, grid: &'a Grid, t: &'a TransientRecord, shown: &[usize]) -> Self {
+        let g = grid;
+        let j = nearest(g.ny, |j| g.y(j), 0.0);
+        let mut p_top: f64 = 0.0;
+        let mut loaded: f64 = f64::NEG_INFINITY;
+        let mut finite = vec![];
+        for &k in shown {
+            let f = &t.frames[k];
+            let (pm, _) = arg_max(&f.pressure);
+            if pm.is_finite() {
+                p_top = p_top.max(pm);
+            }
+            let row_p = &f.pressure[j * g.nx..(j + 1) * g.nx];
+            let row_h = &f.film[j * g.nx..(j + 1) * g.nx];
+            for (p, h) in row_p.iter().zip(row_h) {
+                if h.is_finite() {
+                    finite.push(*h);
+                    if *p > 0.05 * pm {
+                        loaded = loaded.max(*h);
+                    }
+                }
+            }
+        }
+        // the film axis: 2.5 x the film over the loaded zone (as centerline.png), or the
+        // median film along the centre line when nothing is loaded
+        let h_top = if loaded.is_finite() && loaded > 0.0 {
+            2.5 * loaded
+        } else {
+            finite.sort_by(f64::total_cmp);
+            finite.get(finite.len() / 2).copied().unwrap_or(1e-6)
+        };
+        let (h_unit, h_scale) = film_unit(h_top);
+        let t_end = t.frames.iter().map(|f| f.time_s.abs()).fold(0.0, f64::max);
+        Passage {
+            case,
+            grid,
+            t,
+            j,
+            p_top: p_top * 1e-9,
+            h_top: h_top * h_scale,
+            h_unit,
+            h_scale,
+            time_unit: time_unit(t_end),
+            last_step: t.timeline.iter().map(|r| r.step).max().unwrap_or(0),
+        }
+    }
+
+    /// Draws frame `k` onto `root` (already white).
+    fn draw(&self, root: &DrawingArea<BitMapBackend, Shift>, k: usize) -> DrawResult<()> {
+        let f = &self.t.frames[k];
+        let g = self.grid;
+        let row = row_of(self.t, f.step);
+        let converged = row.is_none_or(|r| r.converged);
+        // header: the case title, then where and when
+        let (w, _) = root.dim_in_pixel();
+        let (band, body) = root.split_vertically(62);
+        band.draw_text(
+            &fit(&band, self.case.title.trim(), 18.0)?,
+            &text_style(18.0, BLACK),
+            (12, 8),
+        )?;
+        let (tu, ts) = self.time_unit;
+        let mut line = format!(
+            "x_p = {} mm    t = {} {tu}    step {} of {}",
+            fmt_fixed(f.x_p_m * 1e3, 3),
+            fmt_sig_or_zero(f.time_s * ts, 4),
+            f.step,
+            self.last_step
+        );
+        if !converged {
+            line += "    NOT CONVERGED";
+        }
+        band.draw_text(
+            &line,
+            &text_style(17.0, if converged { GREY } else { NOT_CONVERGED }),
+            (12, 34),
+        )?;
+        let _ = w;
+        if g.ny > 1 {
+            let (_, h) = body.dim_in_pixel();
+            let (top, bottom) = body.split_vertically((h as f64 * 0.52) as u32);
+            self.draw_map(&top, f)?;
+            self.draw_profile(&bottom, f)?;
+        } else {
+            self.draw_profile(&body, f)?;
+        }
+        Ok(())
+    }
+
+    fn draw_map(&self, area: &DrawingArea<BitMapBackend, Shift>, f: &Frame) -> DrawResult<()> {
+        let g = self.grid;
+        let (aw, _) = area.dim_in_pixel();
+        let (main, bar) = area.split_horizontally(aw - GIF_RIGHT);
+        let mm = 1e3;
+        let xr = drawable(g.x_min * mm..g.x_max() * mm);
+        let yr = drawable(g.y_min * mm..g.y_max() * mm);
+        let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
+        let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+        let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+        let mut chart = ChartBuilder::on(&main)
+            .margin_left(GIF_LEFT_MARGIN)
+            .margin_right(10)
+            .margin_top(4)
+            .margin_bottom(4)
+            .x_label_area_size(30)
+            .y_label_area_size(GIF_Y_LABELS)
+            .build_cartesian_2d(xr.clone(), yr.clone())?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_labels(9)
+            .y_labels(5)
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
+            .label_style(text_style(14.0, BLACK))
+            .axis_desc_style(text_style(15.0, BLACK))
+            .y_desc(y_axis_label(self.case))
+            .draw()?;
+        let plot = chart.plotting_area().strip_coord_spec();
+        let (w, h) = plot.dim_in_pixel();
+        let sampler = Sampler { g, v: &f.pressure };
+        let hi = drawable(0.0..self.p_top).end;
+        for py in 0..h {
+            let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
+            for px in 0..w {
+                let x = (xr.start + (px as f64 + 0.5) / w as f64 * xspan) / mm;
+                let v = sampler.at(x, y);
+                let c = if v.is_finite() {
+                    let (r, gg, b) = ColorMap::Inferno.color(v * 1e-9 / hi);
+                    RGBColor(r, gg, b)
+                } else {
+                    RGBColor(190, 190, 190)
+                };
+                plot.draw_pixel((px as i32, py as i32), &c)?;
+            }
+        }
+        plot.draw(&Rectangle::new(
+            [(0, 0), (w as i32 - 1, h as i32 - 1)],
+            ShapeStyle::from(&BLACK).stroke_width(1),
+        ))?;
+        // x_p: a dashed white line across the map
+        let xp = f.x_p_m * mm;
+        if xp >= xr.start && xp <= xr.end {
+            chart.draw_series(DashedLineSeries::new(
+                [(xp, yr.start), (xp, yr.end)],
+                8,
+                6,
+                ShapeStyle::from(&WHITE).stroke_width(2),
+            ))?;
+        }
+        // the colour bar, aligned with the map
+        let span = hi;
+        let fmt = move |v: &f64| fmt_tick(*v, span);
+        let mut cb = ChartBuilder::on(&bar)
+            .margin_top(4)
+            .margin_bottom(4)
+            .margin_left(10)
+            .margin_right(4)
+            .x_label_area_size(30)
+            .right_y_label_area_size(GIF_RIGHT as i32 - 10 - 4 - 26)
+            .build_cartesian_2d(0.0..1.0, 0.0..hi)?;
+        cb.configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_labels(6)
+            .y_label_formatter(&fmt)
+            .label_style(text_style(14.0, BLACK))
+            .axis_desc_style(text_style(15.0, BLACK))
+            .y_desc("pressure (GPa)")
+            .draw()?;
+        let plot = cb.plotting_area().strip_coord_spec();
+        let (w, h) = plot.dim_in_pixel();
+        for py in 0..h {
+            let t = 1.0 - (py as f64 + 0.5) / h as f64;
+            let (r, gg, b) = ColorMap::Inferno.color(t);
+            plot.draw(&PathElement::new(
+                vec![(0, py as i32), (w as i32 - 1, py as i32)],
+                ShapeStyle::from(&RGBColor(r, gg, b)).stroke_width(1),
+            ))?;
+        }
+        plot.draw(&Rectangle::new(
+            [(0, 0), (w as i32 - 1, h as i32 - 1)],
+            ShapeStyle::from(&BLACK).stroke_width(1),
+        ))?;
+        Ok(())
+    }
+
+    fn draw_profile(&self, area: &DrawingArea<BitMapBackend, Shift>, f: &Frame) -> DrawResult<()> {
+        let g = self.grid;
+        let j = self.j;
+        let xr = drawable(g.x_min * 1e3..g.x_max() * 1e3);
+        let pr = drawable(0.0..self.p_top * 1.12);
+        let hr = drawable(0.0..self.h_top);
+        let (xspan, pspan, hspan) = (xr.end - xr.start, pr.end - pr.start, hr.end - hr.start);
+        let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+        let p_fmt = move |v: &f64| fmt_tick(*v, pspan);
+        let h_fmt = move |v: &f64| fmt_tick(*v, hspan);
+        let mut chart = ChartBuilder::on(area)
+            .margin_left(GIF_LEFT_MARGIN)
+            .margin_right(10)
+            .margin_top(8)
+            .margin_bottom(6)
+            .x_label_area_size(50)
+            .y_label_area_size(GIF_Y_LABELS)
+            .right_y_label_area_size(GIF_RIGHT as i32)
+            .build_cartesian_2d(xr.clone(), pr.clone())?
+            .set_secondary_coord(xr.clone(), hr.clone());
+        chart
+            .configure_mesh()
+            .x_labels(9)
+            .y_labels(6)
+            .max_light_lines(0)
+            .bold_line_style(ShapeStyle::from(&RGBColor(225, 225, 225)).stroke_width(1))
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&p_fmt)
+            .label_style(text_style(14.0, BLACK))
+            .axis_desc_style(text_style(15.0, BLACK))
+            .x_desc(if g.ny > 1 {
+                "x, rolling direction (mm), along the axial centre line"
+            } else {
+                "x, rolling direction (mm)   —   inlet ← → outlet"
+            })
+            .y_desc("pressure (GPa)")
+            .draw()?;
+        let word = film_word(self.case);
+        let h_desc = format!("{word} ({})", self.h_unit);
+        chart
+            .configure_secondary_axes()
+            .y_labels(6)
+            .y_label_formatter(&h_fmt)
+            .label_style(text_style(14.0, FILM_COLOR))
+            .axis_desc_style(text_style(15.0, FILM_COLOR))
+            .y_desc(h_desc.as_str())
+            .draw()?;
+        let xs = g.xs();
+        let row = j * g.nx..(j + 1) * g.nx;
+        let p: Vec<(f64, f64)> = xs
+            .iter()
+            .zip(&f.pressure[row.clone()])
+            .map(|(x, p)| (x * 1e3, p * 1e-9))
+            .collect();
+        let h: Vec<(f64, f64)> = xs
+            .iter()
+            .zip(&f.film[row])
+            .map(|(x, h)| (x * 1e3, h * self.h_scale))
+            .collect();
+        // x_p: a dashed vertical line with its name
+        let xp = f.x_p_m * 1e3;
+        if xp >= xr.start && xp <= xr.end {
+            let style = ShapeStyle::from(&GREY).stroke_width(2);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(xp, pr.start), (xp, pr.end)],
+                    8,
+                    6,
+                    style,
+                ))?
+                .label("x_p")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], style));
+        }
+        let pstyle = ShapeStyle::from(&PRESSURE_COLOR).stroke_width(3);
+        let mut first = true;
+        for piece in clip(&p, &pr) {
+            let a = chart.draw_series(LineSeries::new(piece, pstyle))?;
+            if first {
+                a.label("pressure (left)")
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], pstyle));
+                first = false;
+            }
+        }
+        let hstyle = ShapeStyle::from(&FILM_COLOR).stroke_width(3);
+        let mut first = true;
+        for piece in clip(&h, &hr) {
+            let a = chart.draw_secondary_series(LineSeries::new(piece, hstyle))?;
+            if first {
+                a.label(format!("{word} (right)"))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 21, y)], hstyle));
+                first = false;
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .margin(8)
+            .legend_area_size(30)
+            .label_font(text_style(14.0, BLACK))
+            .background_style(ShapeStyle::from(&WHITE.mix(0.85)).filled())
+            .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+            .draw()?;
+        Ok(())
+    }
+}
+
+/// Left margin, y-label width and right column (colour bar / film axis) of the animation, the
+/// same for the map and the profile so that their x axes line up.
+const GIF_LEFT_MARGIN: i32 = 6;
+const GIF_Y_LABELS: i32 = 70;
+const GIF_RIGHT: u32 = 110;
+
+/// `v` with `dec` decimals, `-0.000` written `0.000`.
+fn fmt_fixed(v: f64, dec: usize) -> String {
+    let s = format!("{v:.dec$}");
+    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
+
+/// Milliseconds a frame of `passage.gif` with `n` frames is shown: about 8 s in all, 40 to 200
+/// ms each.
+fn gif_delay_ms(n: usize) -> u32 {
+    (8000 / n.max(1)).clamp(40, 200) as u32
+}
+
+/// Writes `passage.gif` (see the module documentation); at least two frames are needed.
+pub fn write_passage_gif(path: &Path, case: &Case, grid: &Grid, t: &TransientRecord) -> Result<()> {
+    if t.frames.len() < 2 {
+        return Err(draw_err(path, "an animation needs at least two frames"));
+    }
+    ensure_font().map_err(|e| draw_err(path, e))?;
+    let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
+    let passage = Passage::new(case, grid, t, &shown);
+    let backend = BitMapBackend::gif(path, (GIF_WIDTH, GIF_HEIGHT), gif_delay_ms(shown.len()))
+        .map_err(|e| draw_err(path, e))?;
+    let root = backend.into_drawing_area();
+    for &k in &shown {
+        root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
+        passage.draw(&root, k).map_err(|e| draw_err(path, e))?;
+        root.present().map_err(|e| draw_err(path, e))?;
+    }
+    drop(root);
+    match std::fs::metadata(path) {
+        Ok(m) if m.len() > 0 => Ok(()),
+        _ => Err(draw_err(path, "no animation was written")),
+    }
+}
+
+/// Frame `k` of the kept frames drawn as in `passage.gif`, as a PNG of the same size (for
+/// documentation pages and for looking at one frame without a GIF viewer).
+pub fn write_passage_frame_png(
+    path: &Path,
+    case: &Case,
+    grid: &Grid,
+    t: &TransientRecord,
+    k: usize,
+) -> Result<()> {
+    if k >= t.frames.len() {
+        return Err(draw_err(
+            path,
+            format!("frame {k} asked, the run kept {}", t.frames.len()),
+        ));
+    }
+    let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
+    let passage = Passage::new(case, grid, t, &shown);
+    render_png(path, (GIF_WIDTH, GIF_HEIGHT), |root| passage.draw(root, k))
+}
