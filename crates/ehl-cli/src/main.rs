@@ -175,7 +175,27 @@ pub fn result_line(s: &Summary) -> String {
     if let Some(f) = s.friction_coefficient {
         parts.push(format!("friction coefficient {f:.4}"));
     }
-    let state = if s.converged {
+    if s.steps.is_some() {
+        parts[0] = format!("last step: {}", parts[0]);
+    }
+    if let (Some(p), Some(h)) = (s.max_pressure_over_travel_pa, s.min_film_over_travel_m) {
+        parts.push(format!(
+            "over the travel: max pressure {:.4} GPa, minimum film {:.4} um",
+            p * 1e-9,
+            h * 1e6
+        ));
+    }
+    let state = if let Some(n) = s.steps {
+        let failed = s.failed_steps.as_ref().map_or(0, |f| f.len());
+        if failed == 0 {
+            format!(
+                "{n} time steps, all converged ({} Newton iterations)",
+                s.iterations
+            )
+        } else {
+            format!("{n} time steps, {failed} NOT converged")
+        }
+    } else if s.converged {
         format!("converged in {} iterations", s.iterations)
     } else {
         format!("NOT converged after {} iterations", s.iterations)

@@ -67,6 +67,30 @@ pub struct Summary {
     /// ehl: mass flow out through the sides (roller ends) (kg/s); inflow = outflow + side leakage
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side_leakage_kg_s: Option<f64>,
+    /// transient runs: the largest pressure over all steps (step 0 included) (Pa)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_over_travel_pa: Option<f64>,
+    /// transient runs: x_p (m) and step of that largest pressure
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_over_travel_at_xp_m: Option<f64>,
+    /// transient runs: the smallest film over all steps (m)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_over_travel_m: Option<f64>,
+    /// transient runs: x_p (m) of that smallest film
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_over_travel_at_xp_m: Option<f64>,
+    /// transient runs: friction coefficient extremes over the steps where it was computed
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient_over_travel: Option<[f64; 2]>,
+    /// transient runs: number of time steps solved (step 0, the steady start, not counted)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
+    /// transient runs: the steps that did not converge (the run goes on from their best state)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failed_steps: Option<Vec<usize>>,
+    /// transient runs: the largest |mass balance| over the steps, relative to the inflow
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_mass_balance_error: Option<f64>,
     /// true when the EHL pressure and film were solved but the friction integral failed (the
     /// friction keys are then absent and `warnings` says why); written only when true
     #[serde(skip_serializing_if = "std::ops::Not::not")]

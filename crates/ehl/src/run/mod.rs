@@ -11,6 +11,8 @@ use crate::solution::{Fields, Solution, Summary};
 use crate::{Error, Result};
 use std::time::Instant;
 
+pub mod transient;
+
 /// Receives progress reports from long solves: a fraction in [0, 1] (or NaN if unknown) and a
 /// short message. The CLI turns these into a progress bar; the library never prints.
 pub trait Progress: Sync {
@@ -169,8 +171,14 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
     } else {
         0.0
     };
+    // a transient run's frames, when output.frames_every fixes how many (otherwise
+    // `transient::frames_every` fits them into what the solve leaves free)
+    let frames = case
+        .output
+        .frames_every
+        .map_or(0.0, |k| transient::frames_memory(case, k));
     MemoryEstimate {
-        bytes: elastic + dry + fields + ehl,
+        bytes: elastic + dry + fields + ehl + frames,
         key: if ny > nx { "grid.ny" } else { "grid.nx" },
     }
 }
@@ -257,12 +265,15 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
             )
         })
         .collect();
+    // a transient run places the surfaces at their t = 0 shift (the path form of the travel)
+    let kin = transient::kinematics(case);
+    let shift0 = kin.map_or(0.0, |k| k.shift0);
     let gap = crate::geometry::GapWithFeatures {
         smooth: &smooth,
         surfaces: surfaces
             .iter()
             .filter(|s| !s.features.is_empty())
-            .map(|s| (s, 0.0))
+            .map(|s| (s, shift0))
             .collect(),
     };
     let load = if case.is_infinite_line() {
@@ -320,9 +331,31 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
                 transient: None,
             }
         }
-        Kind::Ehl => solve_ehl(
-            case, &geometry, &factory, &gap, load, dry, summary, progress,
-        )?,
+        Kind::Ehl => match kin {
+            Some(kin) => {
+                let est = memory_estimate(case);
+                let budget = memory_limit().0 - est.bytes;
+                transient::solve(
+                    &transient::Context {
+                        case,
+                        grid,
+                        factory: &factory,
+                        smooth: &smooth,
+                        surfaces: &surfaces,
+                        load,
+                        initial_pressure: dry.converged.then_some(dry.pressure.as_slice()),
+                        hertz: (hertz.b, hertz.ph),
+                        kin,
+                        frames_every: transient::frames_every(case, budget),
+                    },
+                    summary,
+                    progress,
+                )?
+            }
+            None => solve_ehl(
+                case, &geometry, &factory, &gap, load, dry, summary, progress,
+            )?,
+        },
     };
     let mut solution = solution;
     check_fields(case, &solution)?;
@@ -541,6 +574,36 @@ fn film_at(grid: &Grid, h: &[f64], x: f64, y: f64) -> Option<f64> {
     val.is_finite().then_some(val)
 }
 
+/// The summary figures of an EHL pressure and film (SI): integrated load and its error, the
+/// maximum pressure and its place, the central film (x = 0, y = 0), the minimum film on the
+/// axial centre row and overall, with its place.
+fn ehl_figures(summary: &mut Summary, grid: &Grid, pressure: &[f64], film: &[f64], load: f64) {
+    let grid = *grid;
+    summary.load_n = pressure.iter().sum::<f64>() * grid.cell_area();
+    summary.load_error = (summary.load_n - load).abs() / load;
+    let (k, pmax) = argmax(pressure);
+    summary.max_pressure_pa = pmax;
+    summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
+    summary.central_film_m = film_at(&grid, film, 0.0, 0.0);
+    let jc = if grid.ny == 1 {
+        0
+    } else {
+        (((0.0 - grid.y_min) / grid.dy - 0.5).round().max(0.0) as usize).min(grid.ny - 1)
+    };
+    summary.centerline_min_film_m = (0..grid.nx)
+        .map(|i| film[grid.idx(i, jc)])
+        .filter(|h| h.is_finite())
+        .reduce(f64::min);
+    let (kmin, hmin) = film.iter().enumerate().filter(|(_, h)| h.is_finite()).fold(
+        (0, f64::INFINITY),
+        |(k, m), (i, &h)| if h < m { (i, h) } else { (k, m) },
+    );
+    if hmin.is_finite() {
+        summary.min_film_m = Some(hmin);
+        summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);
+    }
+}
+
 /// Steady EHL from the dry solution: the Reynolds solver, then the summary figures and, for a
 /// converged solution only, the friction integral.
 #[allow(clippy::too_many_arguments)]
@@ -589,43 +652,15 @@ fn solve_ehl(
         &params,
         &|| progress.report(0.5, "EHL, second start"),
     );
-    let area = grid.cell_area();
     summary.converged = r.converged;
     summary.termination = r.termination.clone();
     summary.iterations = r.iterations;
     // the EHL solver writes f64::MAX for a residual it could not evaluate: leave it out
     summary.residual = (r.residual.is_finite() && r.residual < f64::MAX).then_some(r.residual);
-    summary.load_n = r.pressure.iter().sum::<f64>() * area;
-    summary.load_error = (summary.load_n - load).abs() / load;
-    let (k, pmax) = argmax(&r.pressure);
-    summary.max_pressure_pa = pmax;
-    summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
-    summary.central_film_m = film_at(&grid, &r.film, 0.0, 0.0);
-    let jc = if grid.ny == 1 {
-        0
-    } else {
-        (((0.0 - grid.y_min) / grid.dy - 0.5).round().max(0.0) as usize).min(grid.ny - 1)
-    };
-    summary.centerline_min_film_m = (0..grid.nx)
-        .map(|i| r.film[grid.idx(i, jc)])
-        .filter(|h| h.is_finite())
-        .reduce(f64::min);
+    ehl_figures(&mut summary, &grid, &r.pressure, &r.film, load);
     summary.mass_inflow_kg_s = Some(r.inflow);
     summary.mass_outflow_kg_s = Some(r.outflow);
     summary.side_leakage_kg_s = Some(r.side_leakage);
-    let (kmin, hmin) = r
-        .film
-        .iter()
-        .enumerate()
-        .filter(|(_, h)| h.is_finite())
-        .fold(
-            (0, f64::INFINITY),
-            |(k, m), (i, &h)| if h < m { (i, h) } else { (k, m) },
-        );
-    if hmin.is_finite() {
-        summary.min_film_m = Some(hmin);
-        summary.min_film_at_m = Some([grid.x(kmin % grid.nx), grid.y(kmin / grid.nx)]);
-    }
     // Friction only from a converged solution: a figure from a half-solved film would be noise.
     // A failed friction integral does not throw away the solved pressure and film: the friction
     // keys are left out, `friction_failed` is set and a warning says why.

@@ -1,0 +1,404 @@
+//! A transient case (`motion.travel` given): the surfaces moving with their bodies, the time
+//! loop of [`crate::ehl::transient`], and per step the figures of a `timeline.csv` row
+//! (friction included), the frames kept and the snapshots asked for. No file I/O here.
+//!
+//! Kinematics (docs/case-file.md, "Transient runs"): body k's surface moves along +x at
+//! u1 = u_e (1 + SRR/2) or u2 = u_e (1 - SRR/2), carrying its features. x_p is the centre of
+//! `features[0]` along x: x_p(t) = x_p(0) + u_body t. The path form `{ from, to, steps }` shifts
+//! every body's surface at t = 0 by `from - features[0].x` (the features keep their relative
+//! places) and takes dt = (to - from) / steps / u_body; the duration form keeps the case's
+//! positions and takes dt = duration / steps. Without a feature, x_p reports the distance the
+//! mean flow has travelled, u_e t.
+
+use super::{film_at, Progress};
+use crate::case::{Case, Travel};
+use crate::ehl::{
+    solve_transient, EhlParams, EhlProblem, MovingSurface, StepResult, TimeScheme, TransientEnd,
+    TransientParams, TransientProblem,
+};
+use crate::elastic::Deflection;
+use crate::geometry::GapSampler;
+use crate::grid::Grid;
+use crate::solution::{Fields, Frame, Solution, StepRecord, Summary, TransientRecord};
+use crate::surface::Surface;
+use crate::{Error, Result};
+use std::ops::ControlFlow;
+
+/// Where the surfaces start and how x_p moves, from `motion.travel`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// shift of every body's surface along x at t = 0 (m)
+    pub shift0: f64,
+    /// time step (s)
+    pub dt: f64,
+    pub steps: usize,
+    /// x_p at t = 0 (m)
+    pub xp0: f64,
+    /// dx_p/dt (m/s): the speed of features[0]'s body, or u_e without a feature
+    pub xp_speed: f64,
+}
+
+impl Kinematics {
+    /// x_p (m) at time `t` (s).
+    pub fn x_p(&self, t: f64) -> f64 {
+        self.xp0 + self.xp_speed * t
+    }
+
+    /// The step whose x_p is nearest to `x` (clamped to 0 ..= steps).
+    pub fn nearest_step(&self, x: f64) -> usize {
+        let per_step = self.xp_speed * self.dt;
+        if !(per_step > 0.0) {
+            return 0;
+        }
+        ((x - self.xp0) / per_step)
+            .round()
+            .clamp(0.0, self.steps as f64) as usize
+    }
+}
+
+/// The kinematics of a transient case; `None` for a steady case (no `motion.travel`).
+pub fn kinematics(case: &Case) -> Option<Kinematics> {
+    let m = case.motion.as_ref()?;
+    let travel = m.travel?;
+    let speed = |body: u8| if body == 2 { m.u2() } else { m.u1() };
+    let first = case.features.first();
+    Some(match travel {
+        Travel::Path { from, to, steps } => {
+            // the case reader guarantees a feature on a moving body (docs/case-file.md)
+            let (x0, u) = first.map_or((0.0, m.entrainment_speed), |f| {
+                (f.feature.centre.0, speed(f.body))
+            });
+            Kinematics {
+                shift0: from - x0,
+                dt: (to - from) / steps as f64 / u,
+                steps,
+                xp0: from,
+                xp_speed: u,
+            }
+        }
+        Travel::Duration { duration, steps } => {
+            let (x0, u) = first.map_or((0.0, m.entrainment_speed), |f| {
+                (f.feature.centre.0, speed(f.body))
+            });
+            Kinematics {
+                shift0: 0.0,
+                dt: duration / steps as f64,
+                steps,
+                xp0: x0,
+                xp_speed: u,
+            }
+        }
+    })
+}
+
+/// Bytes of one kept frame (pressure and film) on `nx x ny` cells.
+pub fn frame_bytes(nx: usize, ny: usize) -> f64 {
+    2.0 * 8.0 * nx as f64 * ny as f64
+}
+
+/// Bytes of the frames a transient case keeps with `output.frames_every = k`, plus the
+/// snapshots (5 fields each); 0 for a steady case.
+pub fn frames_memory(case: &Case, k: usize) -> f64 {
+    let Some(kin) = kinematics(case) else {
+        return 0.0;
+    };
+    let (nx, ny) = (case.grid.nx, case.grid.ny);
+    (kin.steps / k.max(1) + 2) as f64 * frame_bytes(nx, ny)
+        + case.output.snapshots.len() as f64 * 2.5 * frame_bytes(nx, ny)
+}
+
+/// The `output.frames_every` a transient case uses: the case's value, or the least k that
+/// keeps the frames within `budget` bytes (at least 1).
+pub fn frames_every(case: &Case, budget: f64) -> usize {
+    if let Some(k) = case.output.frames_every {
+        return k.max(1);
+    }
+    let Some(kin) = kinematics(case) else {
+        return 1;
+    };
+    let need = frames_memory(case, 1);
+    if !(budget > 0.0) {
+        return kin.steps.max(1);
+    }
+    ((need / budget).ceil() as usize).clamp(1, kin.steps.max(1))
+}
+
+/// Everything the transient run needs from `solve`.
+pub(super) struct Context<'a> {
+    pub case: &'a Case,
+    pub grid: Grid,
+    pub factory: &'a (dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
+    pub smooth: &'a dyn GapSampler,
+    pub surfaces: &'a [Surface],
+    pub load: f64,
+    pub initial_pressure: Option<&'a [f64]>,
+    pub hertz: (f64, f64),
+    pub kin: Kinematics,
+    pub frames_every: usize,
+}
+
+/// Runs the transient case and returns its solution: the last step's fields and summary
+/// figures, the extremes over the travel, the timeline, the frames and the snapshots.
+pub(super) fn solve(
+    ctx: &Context,
+    mut summary: Summary,
+    progress: &dyn Progress,
+) -> Result<Solution> {
+    let case = ctx.case;
+    let (lubricant, motion) = match (&case.lubricant, &case.motion) {
+        (Some(l), Some(m)) => (l, m),
+        _ => {
+            return Err(Error::Solver(
+                "an ehl case needs [lubricant] and [motion]".into(),
+            ))
+        }
+    };
+    let grid = ctx.grid;
+    let (b, ph) = ctx.hertz;
+    let kin = ctx.kin;
+    let speeds = [motion.u1(), motion.u2()];
+    let problem = TransientProblem {
+        base: EhlProblem {
+            grid,
+            gap: ctx.smooth,
+            operator: ctx.factory,
+            load: ctx.load,
+            lubricant,
+            entrainment_speed: motion.entrainment_speed,
+            reduced_radius: case.reduced_radius(),
+            reduced_modulus: case.reduced_modulus(),
+            hertz_half_width: b,
+            hertz_pressure: ph,
+            initial_pressure: ctx.initial_pressure,
+        },
+        smooth: ctx.smooth,
+        surfaces: ctx
+            .surfaces
+            .iter()
+            .zip(speeds)
+            .map(|(s, speed)| MovingSurface {
+                surface: s,
+                shift0: kin.shift0,
+                speed,
+            })
+            .collect(),
+        dt: kin.dt,
+        steps: kin.steps,
+    };
+    let params = TransientParams {
+        newton: EhlParams {
+            tolerance: case.solver.tolerance,
+            max_iterations: case.solver.max_iterations,
+            wedge_upwind_order: case.solver.wedge_upwind_order,
+            ..EhlParams::default()
+        },
+        scheme: TimeScheme::Bdf2,
+    };
+    // the step each snapshot is taken at
+    let snapshot_steps: Vec<(f64, usize)> = case
+        .output
+        .snapshots
+        .iter()
+        .map(|&x| (x, kin.nearest_step(x)))
+        .collect();
+    let mut record = TransientRecord {
+        dt_s: kin.dt,
+        frames_every: ctx.frames_every,
+        ..TransientRecord::default()
+    };
+    let mut last: Option<StepResult> = None;
+    let mut friction_failures = 0usize;
+    let mut first_failure: Option<(usize, String)> = None;
+    let steps = kin.steps;
+    let area = grid.cell_area();
+    let end = solve_transient(&problem, &params, &mut |s: &StepResult| {
+        let x_p = kin.x_p(s.time);
+        let friction = if s.converged {
+            match crate::friction::friction(&crate::friction::FrictionInput {
+                grid: &grid,
+                pressure: &s.pressure,
+                film: &s.film,
+                viscosity: &s.viscosity,
+                u1: motion.u1(),
+                u2: motion.u2(),
+                rheology: &lubricant.rheology,
+                load: ctx.load,
+            }) {
+                Ok(f) if f.coefficient.is_finite() => Some(f.coefficient),
+                _ => {
+                    friction_failures += 1;
+                    None
+                }
+            }
+        } else {
+            if first_failure.is_none() {
+                first_failure = Some((s.step, s.termination.clone()));
+            }
+            None
+        };
+        let min_film = s
+            .film
+            .iter()
+            .cloned()
+            .filter(|h| h.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        let max_p = s.pressure.iter().cloned().fold(0.0f64, f64::max);
+        record.timeline.push(StepRecord {
+            step: s.step,
+            time_s: s.time,
+            x_p_m: x_p,
+            max_pressure_pa: max_p,
+            min_film_m: if min_film.is_finite() {
+                min_film.max(0.0)
+            } else {
+                0.0
+            },
+            central_film_m: film_at(&grid, &s.film, 0.0, 0.0).map_or(0.0, |h| h.max(0.0)),
+            friction_coefficient: friction,
+            load_error: s.pressure.iter().sum::<f64>() * area / ctx.load - 1.0,
+            converged: s.converged,
+            h0_m: s.h0,
+            newton_iterations: s.newton_iterations,
+            linear_iterations: s.linear_iterations,
+            operator_applications: s.operator_applications,
+            mass_balance: s.mass.relative_error(),
+            mass_inflow_kg_s: s.mass.inflow,
+            mass_outflow_kg_s: s.mass.outflow,
+            side_leakage_kg_s: s.mass.side_leakage,
+            mass_storage_kg_s: s.mass.storage,
+            wall_time_s: s.wall_time,
+        });
+        if s.step % ctx.frames_every == 0 || s.step == steps {
+            record.frames.push(Frame {
+                step: s.step,
+                time_s: s.time,
+                x_p_m: x_p,
+                pressure: s.pressure.clone(),
+                film: s.film.iter().map(|&h| h.max(0.0)).collect(),
+            });
+        }
+        for &(x, k) in &snapshot_steps {
+            if k == s.step {
+                record.snapshots.push((x, k, fields_of(s)));
+            }
+        }
+        progress.report(
+            s.step as f64 / steps.max(1) as f64,
+            &format!(
+                "step {}/{steps}, x_p = {:.4} mm{}",
+                s.step,
+                x_p * 1e3,
+                if s.converged { "" } else { " (not converged)" }
+            ),
+        );
+        last = Some(s.clone());
+        ControlFlow::Continue(())
+    });
+    let Some(last) = last else {
+        return Err(Error::Solver("the transient run produced no step".into()));
+    };
+    let failed_steps: Vec<usize> = record
+        .timeline
+        .iter()
+        .filter(|r| !r.converged)
+        .map(|r| r.step)
+        .collect();
+    // the last step's figures
+    super::ehl_figures(&mut summary, &grid, &last.pressure, &last.film, ctx.load);
+    summary.residual =
+        (last.residual.is_finite() && last.residual < f64::MAX).then_some(last.residual);
+    summary.mass_inflow_kg_s = Some(last.mass.inflow);
+    summary.mass_outflow_kg_s = Some(last.mass.outflow);
+    summary.side_leakage_kg_s = Some(last.mass.side_leakage);
+    summary.iterations = record.timeline.iter().map(|r| r.newton_iterations).sum();
+    summary.converged = failed_steps.is_empty() && matches!(end, TransientEnd::Completed { .. });
+    summary.termination = if failed_steps.is_empty() {
+        format!(
+            "{steps} time steps, every step converged (tolerance {:.1e})",
+            case.solver.tolerance
+        )
+    } else {
+        let (k, why) = first_failure.unwrap_or((failed_steps[0], String::new()));
+        format!(
+            "{} of {} steps (step 0, the steady start, included) did not converge; first: step {k}: {why}",
+            failed_steps.len(),
+            steps + 1
+        )
+    };
+    if let Some(last_row) = record.timeline.last() {
+        if let Some(f) = last_row.friction_coefficient {
+            summary.friction_coefficient = Some(f);
+            summary.friction_force_n = Some(f * ctx.load);
+        }
+    }
+    if friction_failures > 0 {
+        summary.warnings.push(format!(
+            "the friction integral failed at {friction_failures} converged step(s); their friction_coefficient cells in timeline.csv are empty"
+        ));
+    }
+    let (kp, pmax) =
+        record
+            .timeline
+            .iter()
+            .enumerate()
+            .fold((0, f64::NEG_INFINITY), |(k, m), (i, r)| {
+                if r.max_pressure_pa > m {
+                    (i, r.max_pressure_pa)
+                } else {
+                    (k, m)
+                }
+            });
+    summary.max_pressure_over_travel_pa = Some(pmax);
+    summary.max_pressure_over_travel_at_xp_m = Some(record.timeline[kp].x_p_m);
+    let (kh, hmin) =
+        record
+            .timeline
+            .iter()
+            .enumerate()
+            .fold((0, f64::INFINITY), |(k, m), (i, r)| {
+                if r.min_film_m < m {
+                    (i, r.min_film_m)
+                } else {
+                    (k, m)
+                }
+            });
+    summary.min_film_over_travel_m = Some(hmin);
+    summary.min_film_over_travel_at_xp_m = Some(record.timeline[kh].x_p_m);
+    let fr: Vec<f64> = record
+        .timeline
+        .iter()
+        .filter_map(|r| r.friction_coefficient)
+        .collect();
+    if !fr.is_empty() {
+        summary.friction_coefficient_over_travel = Some([
+            fr.iter().cloned().fold(f64::INFINITY, f64::min),
+            fr.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        ]);
+    }
+    summary.steps = Some(steps);
+    summary.max_mass_balance_error = Some(
+        record
+            .timeline
+            .iter()
+            .map(|r| r.mass_balance.abs())
+            .fold(0.0, f64::max),
+    );
+    summary.failed_steps = Some(failed_steps);
+    Ok(Solution {
+        grid,
+        fields: fields_of(&last),
+        summary,
+        transient: Some(record),
+    })
+}
+
+/// The output fields of a step.
+fn fields_of(s: &StepResult) -> Fields {
+    Fields {
+        pressure: s.pressure.clone(),
+        deformation: s.deflection.clone(),
+        film: Some(s.film.clone()),
+        viscosity: Some(s.viscosity.clone()),
+        density: Some(s.density.clone()),
+    }
+}
