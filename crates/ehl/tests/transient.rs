@@ -238,29 +238,230 @@ fn waviness_amplitude_reduction_probe() {
 #[test]
 #[ignore]
 fn cost_probe() {
+    // EHL_PROBE_NX (default 1024 and 2048), EHL_PROBE_STEPS (default 100)
     let c = line(20.0, 10.0);
-    let nx = 1024;
-    let grid = Grid::new(nx, 1, -4.5 * c.b, 1.5 * c.b, -0.5, 0.5);
-    for tol in [1e-8, 1e-6] {
+    let nxs: Vec<usize> = match std::env::var("EHL_PROBE_NX") {
+        Ok(v) => v.split(',').map(|s| s.trim().parse().unwrap()).collect(),
+        Err(_) => vec![1024, 2048],
+    };
+    let nsteps: usize = std::env::var("EHL_PROBE_STEPS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(100);
+    for nx in nxs {
+        let grid = Grid::new(nx, 1, -4.5 * c.b, 1.5 * c.b, -0.5, 0.5);
         let t = std::time::Instant::now();
-        let (_, steps, _) = {
-            let _ = tol;
-            run_line(
-                &c,
-                nx,
-                (-4.5, 1.5),
-                0.0,
-                &waviness(2e-8, c.b),
-                &none(),
-                grid.dx / c.ue,
-                100,
-                TimeScheme::Bdf2,
-            )
-        };
+        let (_, steps, end) = run_line(
+            &c,
+            nx,
+            (-4.5, 1.5),
+            0.0,
+            &waviness(2e-8, c.b),
+            &none(),
+            grid.dx / c.ue,
+            nsteps,
+            TimeScheme::Bdf2,
+        );
+        let k = nsteps as f64;
         let n: usize = steps[1..].iter().map(|s| s.newton_iterations).sum();
         let g: usize = steps[1..].iter().map(|s| s.linear_iterations).sum();
         let a: usize = steps[1..].iter().map(|s| s.operator_applications).sum();
         let w: f64 = steps[1..].iter().map(|s| s.wall_time).sum();
-        println!("tol {tol}: {:.1} s total, steps {:.2} ms each, newton {n} gmres {g} applies {a} per 100 steps; first step wall {:.3}", t.elapsed().as_secs_f64(), w*10.0, steps[0].wall_time);
+        let worst = steps[1..]
+            .iter()
+            .map(|s| s.residual.max(s.load_error.abs()))
+            .fold(0.0, f64::max);
+        println!(
+            "nx {nx}: {nsteps} steps {:.2} s total ({:.3} s steady start); per step {:.2} ms, newton {:.2} gmres {:.1} applies {:.1}; worst residual {worst:.1e}; {end:?}",
+            t.elapsed().as_secs_f64(),
+            steps[0].wall_time,
+            w / k * 1e3,
+            n as f64 / k,
+            g as f64 / k,
+            a as f64 / k,
+        );
+    }
+}
+
+/// A groove of zero depth is no feature: every step reproduces the smooth steady solution
+/// (the squeeze term of an unchanged film is zero). Same bound as the smooth run above.
+#[test]
+fn zero_depth_groove_reproduces_the_smooth_solution() {
+    let c = line(20.0, 10.0);
+    let nx = 256;
+    let dx = 6.0 * c.b / nx as f64;
+    let (_, steps, end) = run_line(
+        &c,
+        nx,
+        (-4.5, 1.5),
+        0.5,
+        &groove(0.5 * c.b, 0.0, -1.0 * c.b),
+        &none(),
+        dx / (1.25 * c.ue),
+        20,
+        TimeScheme::Bdf2,
+    );
+    assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
+    let (_, smooth, _) = run_line(&c, nx, (-4.5, 1.5), 0.5, &none(), &none(), 1.0, 0, TimeScheme::Bdf2);
+    let hc = smooth[0].film[nx / 2];
+    for s in &steps {
+        let dp = max_abs_diff(&s.pressure, &smooth[0].pressure) / c.ph;
+        let dh = max_abs_diff(&s.film, &smooth[0].film) / hc;
+        assert!(dp < 1e-6 && dh < 1e-6, "step {}: dp {dp:e} dh {dh:e}", s.step);
+    }
+}
+
+/// A groove on a body that stands still (SRR = 2: u2 = 0, the groove on body 2) is a steady
+/// problem: the run starts on the steady solution with the groove in place and must stay there
+/// (nothing moves, so the squeeze term is zero at the solution), while the other body slides.
+#[test]
+fn feature_on_a_standing_body_stays_on_its_steady_solution() {
+    let c = line(20.0, 10.0);
+    let nx = 256;
+    let dx = 6.0 * c.b / nx as f64;
+    let g = groove(0.4 * c.b, 0.3e-6, -0.2 * c.b);
+    let (_, steps, end) = run_line(&c, nx, (-4.5, 1.5), 2.0, &none(), &g, dx / c.ue, 20, TimeScheme::Bdf2);
+    assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
+    let s0 = &steps[0];
+    let hc = s0.film[nx / 2];
+    // the groove changes the steady film: the identity is not the smooth solution
+    let (_, smooth, _) = run_line(&c, nx, (-4.5, 1.5), 2.0, &none(), &none(), 1.0, 0, TimeScheme::Bdf2);
+    assert!(max_abs_diff(&s0.film, &smooth[0].film) / hc > 0.05);
+    for s in &steps[1..] {
+        let dp = max_abs_diff(&s.pressure, &s0.pressure) / c.ph;
+        let dh = max_abs_diff(&s.film, &s0.film) / hc;
+        assert!(dp < 1e-6 && dh < 1e-6, "step {}: dp {dp:e} dh {dh:e}", s.step);
+    }
+}
+
+/// Mass: at every step of a groove's passage (the groove on the faster body, SRR = 0.5), the
+/// discrete balance of the pressurised zone, inflow - outflow - side leakage = d(mass)/dt, holds.
+#[test]
+fn mass_is_conserved_at_every_step_of_a_groove_passage() {
+    let c = line(20.0, 10.0);
+    let nx = 256;
+    let dx = 6.0 * c.b / nx as f64;
+    let u1 = 1.25 * c.ue;
+    let steps_n = (4.0 * c.b / dx) as usize;
+    let (_, steps, end) = run_line(
+        &c,
+        nx,
+        (-4.5, 1.5),
+        0.5,
+        &groove(0.5 * c.b, 0.3e-6, -2.5 * c.b),
+        &none(),
+        dx / u1,
+        steps_n,
+        TimeScheme::Bdf2,
+    );
+    assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
+    // The imbalance is the sum of the converged cell residuals over the wet cells: with the
+    // Newton tolerance 1e-8 per (scaled) row on ~150 wet cells it is ~1e-6 of the flows
+    // (measured: 2.8e-6 of the inflow, while the storage reaches 27 times the inflow as the
+    // groove's volume enters). A storage term inconsistent with the residual's squeeze term
+    // (a wrong c0 or history) would leave an O(1) imbalance. Bound: 1e-5 of the largest flow.
+    let mut storage_seen = 0.0f64;
+    for s in &steps {
+        let m = s.mass;
+        let scale = m.inflow.abs().max(m.outflow.abs()).max(m.storage.abs());
+        let r = (m.inflow - m.outflow - m.side_leakage - m.storage).abs() / scale;
+        assert!(r < 1e-5, "step {}: imbalance {r:e} of the largest flow ({m:?})", s.step);
+        storage_seen = storage_seen.max(m.storage.abs() / m.inflow);
+    }
+    // the groove's passage does move mass in and out of the zone (the test is not vacuous)
+    assert!(storage_seen > 1.0, "storage / inflow {storage_seen}");
+}
+
+/// Dominant wavelength (in b) of `v` sampled at `x` (in b) within `lo..hi`: the Λ in 0.1 .. 1.5 b
+/// that maximises the windowed Fourier amplitude (scan, then a parabola through the best three).
+fn dominant_wavelength(x: &[f64], v: &[f64], (lo, hi): (f64, f64)) -> f64 {
+    let pts: Vec<(f64, f64)> = x.iter().zip(v).filter(|(x, _)| **x >= lo && **x <= hi).map(|(a, b)| (*a, *b)).collect();
+    let mean = pts.iter().map(|p| p.1).sum::<f64>() / pts.len() as f64;
+    let amp = |lam: f64| {
+        let (mut c, mut s) = (0.0, 0.0);
+        for &(xi, vi) in &pts {
+            // Hann window over lo..hi
+            let w = 0.5 - 0.5 * (2.0 * std::f64::consts::PI * (xi - lo) / (hi - lo)).cos();
+            let ph = 2.0 * std::f64::consts::PI * xi / lam;
+            c += w * (vi - mean) * ph.cos();
+            s += w * (vi - mean) * ph.sin();
+        }
+        (c * c + s * s).sqrt()
+    };
+    let grid: Vec<f64> = (0..=1400).map(|k| 0.1 + k as f64 * 0.001).collect();
+    let a: Vec<f64> = grid.iter().map(|&l| amp(l)).collect();
+    let k = (1..a.len() - 1).max_by(|&i, &j| a[i].total_cmp(&a[j])).unwrap();
+    let (y0, y1, y2) = (a[k - 1], a[k], a[k + 1]);
+    grid[k] + 0.5 * 0.001 * (y0 - y2) / (y0 - 2.0 * y1 + y2)
+}
+
+/// Shift (in cells, continuous) that best maps `a` onto `b` within the index range `r`:
+/// the least-squares shift of linear interpolation, scanned in 0.01-cell steps.
+fn best_shift(a: &[f64], b: &[f64], r: std::ops::Range<usize>, max: f64) -> f64 {
+    let at = |v: &[f64], s: f64| {
+        let i = s.floor() as usize;
+        let t = s - i as f64;
+        v[i] * (1.0 - t) + v[i + 1] * t
+    };
+    let mut best = (f64::INFINITY, 0.0);
+    let mut s = 0.0;
+    while s <= max {
+        let e: f64 = r.clone().map(|i| (b[i] - at(a, i as f64 - s)).powi(2)).sum();
+        if e < best.0 {
+            best = (e, s);
+        }
+        s += 0.01;
+    }
+    best.1
+}
+
+/// Rolling with sliding (Greenwood & Morales-Espejel 1994; Hooke 2006; Venner & Lubrecht 2000
+/// ch. 13): a waviness of wavelength lambda on a body moving at u_body leaves in the film a
+/// ripple that travels with the mean speed u_e, so its wavelength in the contact is
+/// lambda u_e / u_body. Measured from the frames: the dominant wavelength of the film change
+/// over -0.8 .. 0.8 b, and the shift of that change between two frames `lag` steps apart.
+/// Returns (ripple wavelength / expected, disturbance speed / u_e).
+fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
+    let c = line(20.0, 10.0);
+    let nx = 384;
+    let (xin, xout) = (-4.5, 1.5);
+    let dx = (xout - xin) / nx as f64; // in b
+    let u1 = c.ue * (1.0 + 0.5 * srr);
+    let (grid, s0, _) = run_line(&c, nx, (xin, xout), srr, &none(), &none(), 1.0, 0, TimeScheme::Bdf2);
+    let hc = film_at_centre(&grid, &s0[0].film);
+    // the surface moves one cell per step; the start's disturbance leaves the contact centre
+    // after about 3 b / u_e
+    let dt = dx * c.b / u1;
+    let flush = (3.0 * u1 / c.ue / dx) as usize;
+    // the ripple repeats every lambda u_e / u_body: a lag of 0.4 of that keeps the shift
+    // unambiguous (ripple shift per step: u_e dt = u_e / u1 cells)
+    let ripple_cells = lambda_b * c.ue / u1 / dx;
+    let lag = (0.4 * ripple_cells * u1 / c.ue).round() as usize;
+    let (_, steps, end) = run_line(&c, nx, (xin, xout), srr, &waviness(0.05 * hc, lambda_b * c.b), &none(), dt, flush + lag, TimeScheme::Bdf2);
+    assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
+    let xs: Vec<f64> = (0..nx).map(|i| grid.x(i) / c.b).collect();
+    let dh = |s: &StepResult| -> Vec<f64> { s.film.iter().zip(&s0[0].film).map(|(a, b)| a - b).collect() };
+    let (ha, hb) = (dh(&steps[flush]), dh(&steps[flush + lag]));
+    let lam = dominant_wavelength(&xs, &hb, (-0.8, 0.8));
+    let r = ((-0.6 - xin) / dx) as usize..((0.6 - xin) / dx) as usize;
+    let shift = best_shift(&ha, &hb, r, 0.5 * ripple_cells);
+    let speed = shift * dx * c.b / (lag as f64 * dt);
+    (lam / (lambda_b * c.ue / u1), speed / c.ue)
+}
+
+/// Tolerance 5 %: the 1.6 b window holds 3-5 ripple wavelengths, so the Fourier peak is located
+/// to a few per cent (measured: +2.3 % at SRR = 1); the shift over 30 steps is resolved to
+/// 0.01 cell of ~20 cells, but the part of the film change that follows the surface (at u_body)
+/// biases it (measured +1.4 %). The alternatives the test rules out are 33-100 % away: a ripple
+/// with the surface's own wavelength, or a disturbance moving with the surface.
+#[test]
+fn film_ripple_travels_at_the_mean_speed_with_wavelength_lambda_ue_over_u_body() {
+    for (srr, lambda_b) in [(1.0, 0.5), (-0.8, 0.3)] {
+        let (wave, speed) = ripple(srr, lambda_b);
+        println!("SRR {srr}: ripple wavelength {wave:.4} of lambda u_e / u_body, speed {speed:.4} u_e");
+        assert!(
+            (wave - 1.0).abs() < 0.05 && (speed - 1.0).abs() < 0.05,
+            "SRR {srr}: ripple wavelength {wave} of lambda u_e / u_body, speed {speed} u_e"
+        );
     }
 }
