@@ -138,6 +138,9 @@ pub struct StepRecord {
     /// relative load error (sum p dA - load) / load
     pub load_error: f64,
     pub converged: bool,
+    /// minimum film along the axial centre row (the row nearest y = 0) (m): on a finite roller
+    /// the overall minimum sits at the free ends; this one shows what a pit does mid-length
+    pub centerline_min_film_m: f64,
     /// rigid-body film constant h0 (m): varies so that the load stays constant
     pub h0_m: f64,
     /// Newton steps of this time step

@@ -62,7 +62,7 @@ pub const GIF_WIDTH: u32 = 800;
 pub const GIF_HEIGHT: u32 = 600;
 
 /// The columns of `timeline.csv`, in order: the interface's nine, then the solver's figures.
-pub const TIMELINE_COLUMNS: [&str; 19] = [
+pub const TIMELINE_COLUMNS: [&str; 20] = [
     "step",
     "time_s",
     "x_p_m",
@@ -72,6 +72,7 @@ pub const TIMELINE_COLUMNS: [&str; 19] = [
     "friction_coefficient",
     "load_error",
     "converged",
+    "centerline_min_film_m",
     "h0_m",
     "newton_iterations",
     "linear_iterations",
@@ -125,6 +126,7 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
             ("max_pressure_pa", r.max_pressure_pa),
             ("min_film_m", r.min_film_m),
             ("central_film_m", r.central_film_m),
+            ("centerline_min_film_m", r.centerline_min_film_m),
             ("load_error", r.load_error),
             ("h0_m", r.h0_m),
             ("mass_balance", r.mass_balance),
@@ -189,7 +191,7 @@ pub fn timeline_csv(t: &TransientRecord) -> String {
             .unwrap_or_default();
         let _ = writeln!(
             s,
-            "{},{:e},{:e},{:e},{:e},{:e},{friction},{:e},{},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{:e},{:e},{:e},{:e},{:e},{friction},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
             r.step,
             r.time_s,
             r.x_p_m,
@@ -198,6 +200,7 @@ pub fn timeline_csv(t: &TransientRecord) -> String {
             r.central_film_m,
             r.load_error,
             r.converged,
+            r.centerline_min_film_m,
             r.h0_m,
             r.newton_iterations,
             r.linear_iterations,
@@ -537,6 +540,7 @@ const TIMELINE_WIDTH: u32 = 1000;
 const NOT_CONVERGED: RGBColor = RGBColor(220, 20, 20);
 const MIN_FILM_COLOR: RGBColor = SERIES_COLORS[2];
 const FRICTION_COLOR: RGBColor = SERIES_COLORS[3];
+const CENTRE_MIN_FILM_COLOR: RGBColor = RGBColor(230, 140, 20);
 
 /// One curve of a timeline panel (NaN where a step has no value).
 struct Line {
@@ -659,6 +663,23 @@ pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Resu
             },
         ],
     });
+    // on a finite roller the overall minimum sits at the free ends: the centre row's too
+    if rows
+        .iter()
+        .any(|r| (r.centerline_min_film_m - r.min_film_m).abs() > 1e-3 * r.min_film_m.abs())
+    {
+        if let Some(p) = panels.last_mut() {
+            p.lines.push(Line {
+                label: "minimum film on the centre row (y = 0)".into(),
+                color: CENTRE_MIN_FILM_COLOR,
+                pts: xs
+                    .iter()
+                    .zip(rows)
+                    .map(|(&x, r)| (x, r.centerline_min_film_m * scale))
+                    .collect(),
+            });
+        }
+    }
     // friction
     if rows.iter().any(|r| r.friction_coefficient.is_some()) {
         let mu: Vec<f64> = rows

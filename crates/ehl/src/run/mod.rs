@@ -179,7 +179,13 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
         .map_or(0.0, |k| transient::frames_memory(case, k));
     MemoryEstimate {
         bytes: elastic + dry + fields + ehl + frames,
-        key: if ny > nx { "grid.ny" } else { "grid.nx" },
+        key: if frames > 0.5 * (elastic + dry + fields + ehl + frames) {
+            "output.frames_every"
+        } else if ny > nx {
+            "grid.ny"
+        } else {
+            "grid.nx"
+        },
     }
 }
 
@@ -223,6 +229,18 @@ pub fn check_memory(
     } else {
         "a dry"
     };
+    if est.key == "output.frames_every" {
+        return Err((
+            est.key.to_string(),
+            format!(
+                "the frames kept of a transient run on {} x {} cells need about {:.2} GB in all (estimate), more than the {:.2} GB of {source}; keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+                case.grid.nx,
+                case.grid.ny,
+                est.bytes / 1e9,
+                limit / 1e9
+            ),
+        ));
+    }
     Err((
         est.key.to_string(),
         format!(

@@ -255,6 +255,23 @@ pub(super) fn solve(
             },
             central_film_m: film_at(&grid, &s.film, 0.0, 0.0).map_or(0.0, |h| h.max(0.0)),
             friction_coefficient: friction,
+            centerline_min_film_m: {
+                let jc = if grid.ny == 1 {
+                    0
+                } else {
+                    ((-grid.y_min / grid.dy - 0.5).round().max(0.0) as usize).min(grid.ny - 1)
+                };
+                let m = s.film[jc * grid.nx..(jc + 1) * grid.nx]
+                    .iter()
+                    .cloned()
+                    .filter(|h| h.is_finite())
+                    .fold(f64::INFINITY, f64::min);
+                if m.is_finite() {
+                    m.max(0.0)
+                } else {
+                    0.0
+                }
+            },
             load_error: s.pressure.iter().sum::<f64>() * area / ctx.load - 1.0,
             converged: s.converged,
             h0_m: s.h0,
