@@ -48,6 +48,25 @@ pub struct CheckReport {
     pub cells_across_2b: f64,
     /// cells across the contact length (finite line) or 2 a_y (point) along y; None for 1D
     pub cells_across_y: Option<f64>,
+    /// transient runs (`motion.travel`): the time stepping
+    pub transient: Option<TransientCheck>,
+}
+
+/// The time stepping of a transient case, as `ehl check` prints it (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TransientCheck {
+    pub steps: usize,
+    /// s
+    pub dt: f64,
+    /// x_p at the start and the end (m)
+    pub xp: (f64, f64),
+    /// surface speeds u1, u2 (m/s)
+    pub u: (f64, f64),
+    /// the advance per step of features[0]'s surface and of the film's disturbances (u_e), in cells
+    pub cells_per_step: (f64, f64),
+    /// `output.frames_every` used (the case's or the memory-bounded choice) and the frames' bytes
+    pub frames_every: usize,
+    pub frames_bytes: f64,
 }
 
 /// Builds the report of a validated case.
@@ -86,7 +105,24 @@ pub fn check_report(case: &Case) -> CheckReport {
         } else {
             None
         },
+        transient: None,
     };
+    if let (Some(kin), Some(m)) = (crate::run::transient::kinematics(case), &case.motion) {
+        let est = crate::run::memory_estimate(case);
+        let k = crate::run::transient::frames_every(case, crate::run::memory_limit().0 - est.bytes);
+        report.transient = Some(TransientCheck {
+            steps: kin.steps,
+            dt: kin.dt,
+            xp: (kin.x_p(0.0), kin.x_p(kin.dt * kin.steps as f64)),
+            u: (m.u1(), m.u2()),
+            cells_per_step: (
+                kin.xp_speed * kin.dt / grid.dx,
+                m.entrainment_speed * kin.dt / grid.dx,
+            ),
+            frames_every: k,
+            frames_bytes: crate::run::transient::frames_memory(case, k),
+        });
+    }
     if let (Kind::Ehl, Some(m), Some(l)) = (case.kind, &case.motion, &case.lubricant) {
         let u = l.viscosity * m.entrainment_speed / (e * r);
         let g = l.pressure_viscosity_coefficient * e;
@@ -264,6 +300,32 @@ impl fmt::Display for CheckReport {
                 "cells across contact length (y)"
             };
             row(f, lab, fixed(c, 1), "")?;
+        }
+        if let Some(t) = &self.transient {
+            writeln!(f, "transient (motion.travel)")?;
+            row(f, "time steps", t.steps.to_string(), "")?;
+            row(f, "time step dt", fixed(t.dt * 1e6, 4), "us")?;
+            row(f, "duration", fixed(t.dt * t.steps as f64 * 1e6, 3), "us")?;
+            row(
+                f,
+                "x_p from .. to",
+                format!("{} .. {}", fixed(t.xp.0 * 1e3, 4), fixed(t.xp.1 * 1e3, 4)),
+                "mm",
+            )?;
+            row(
+                f,
+                "surface speeds u1, u2",
+                format!("{}, {}", fixed(t.u.0, 4), fixed(t.u.1, 4)),
+                "m/s",
+            )?;
+            row(f, "features[0] advance per step", fixed(t.cells_per_step.0, 3), "cells")?;
+            row(f, "film (u_e) advance per step", fixed(t.cells_per_step.1, 3), "cells")?;
+            row(
+                f,
+                "frames kept",
+                format!("every {} step(s), {:.1} MB", t.frames_every, t.frames_bytes / 1e6),
+                "",
+            )?;
         }
         Ok(())
     }
