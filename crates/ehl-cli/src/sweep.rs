@@ -32,6 +32,10 @@ pub const FIGURES: &[&str] = &[
     "centerline_min_film_m",
     "friction_coefficient",
     "friction_force_n",
+    // transient runs: the extremes and the mean over the travel
+    "max_pressure_over_travel_pa",
+    "min_film_over_travel_m",
+    "friction_coefficient_mean_over_travel",
 ];
 
 /// One `--vary KEY=SPEC`.

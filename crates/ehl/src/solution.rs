@@ -82,6 +82,10 @@ pub struct Summary {
     /// transient runs: friction coefficient extremes over the steps where it was computed
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_coefficient_over_travel: Option<[f64; 2]>,
+    /// transient runs: the mean friction coefficient over the steps where it was computed
+    /// (equal time steps: the time average over the travel)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient_mean_over_travel: Option<f64>,
     /// transient runs: number of time steps solved (step 0, the steady start, not counted)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub steps: Option<usize>,

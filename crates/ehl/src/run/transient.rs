@@ -387,6 +387,8 @@ pub(super) fn solve(
         .filter_map(|r| r.friction_coefficient)
         .collect();
     if !fr.is_empty() {
+        summary.friction_coefficient_mean_over_travel =
+            Some(fr.iter().sum::<f64>() / fr.len() as f64);
         summary.friction_coefficient_over_travel = Some([
             fr.iter().cloned().fold(f64::INFINITY, f64::min),
             fr.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
