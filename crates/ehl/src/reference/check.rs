@@ -318,12 +318,26 @@ impl fmt::Display for CheckReport {
                 format!("{}, {}", fixed(t.u.0, 4), fixed(t.u.1, 4)),
                 "m/s",
             )?;
-            row(f, "features[0] advance per step", fixed(t.cells_per_step.0, 3), "cells")?;
-            row(f, "film (u_e) advance per step", fixed(t.cells_per_step.1, 3), "cells")?;
+            row(
+                f,
+                "features[0] advance per step",
+                fixed(t.cells_per_step.0, 3),
+                "cells",
+            )?;
+            row(
+                f,
+                "film (u_e) advance per step",
+                fixed(t.cells_per_step.1, 3),
+                "cells",
+            )?;
             row(
                 f,
                 "frames kept",
-                format!("every {} step(s), {:.1} MB", t.frames_every, t.frames_bytes / 1e6),
+                format!(
+                    "every {} step(s), {:.1} MB",
+                    t.frames_every,
+                    t.frames_bytes / 1e6
+                ),
                 "",
             )?;
         }
