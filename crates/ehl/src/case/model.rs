@@ -152,54 +152,9 @@ impl Motion {
     }
 }
 
-/// `lubricant.viscosity_model`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ViscosityModel {
-    Roelands,
-    Barus,
-}
-
-/// `lubricant.density_model`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum DensityModel {
-    DowsonHigginson,
-    Constant,
-}
-
-/// `lubricant.rheology`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(tag = "model", rename_all = "kebab-case")]
-pub enum Rheology {
-    Newtonian,
-    /// Carreau (thesis eq. 2.15) with shear modulus G_f (Pa), power-law index n and optional
-    /// limiting shear stress tau_L = Lambda p (eq. 2.14)
-    Carreau {
-        shear_modulus: f64,
-        power_law_index: f64,
-        limiting_shear_coefficient: Option<f64>,
-    },
-    /// Eyring (sinh law) with Eyring stress tau_0 (Pa) and optional limiting shear coefficient
-    Eyring {
-        eyring_stress: f64,
-        limiting_shear_coefficient: Option<f64>,
-    },
-}
-
-/// `[lubricant]` (ehl only).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Lubricant {
-    /// eta0 at ambient pressure (Pa s)
-    pub viscosity: f64,
-    /// alpha (1/Pa)
-    pub pressure_viscosity_coefficient: f64,
-    /// rho0 at ambient pressure (kg/m^3)
-    pub density: f64,
-    pub viscosity_model: ViscosityModel,
-    pub density_model: DensityModel,
-    pub rheology: Rheology,
-}
+// The lubricant's parameters are physics types of plain numbers, defined with their laws in
+// `crate::lubricant` (which knows nothing of the case file); the case re-exports them.
+pub use crate::lubricant::{DensityModel, Lubricant, Rheology, ViscosityModel};
 
 /// `[grid]`: cell counts and extents in Hertz half-widths b.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

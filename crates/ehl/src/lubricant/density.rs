@@ -1,6 +1,6 @@
 //! Pressure-density laws (isothermal).
 
-use crate::case::{DensityModel, Lubricant};
+use super::{DensityModel, Lubricant};
 
 /// Dowson-Higginson constants (thesis eq. 2.10): rho = rho0 (C1 + C2 p) / (C1 + p).
 const DH_C1: f64 = 0.59e9; // Pa

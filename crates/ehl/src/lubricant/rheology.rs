@@ -24,7 +24,7 @@
 //! tau_0 > 0, Lambda >= 0, all finite. With them and a finite shear rate the functions below
 //! never return NaN.
 
-use crate::case::Rheology;
+use super::Rheology;
 
 /// Limiting shear stress tau_L = Lambda max(p, 0) (Pa) of thesis eq. 2.14 (Bair & Winer 1979),
 /// or `None` when the model has no limit (Newtonian, or Carreau/Eyring without

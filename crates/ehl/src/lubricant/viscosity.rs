@@ -1,6 +1,6 @@
 //! Pressure-viscosity laws (isothermal).
 
-use crate::case::{Lubricant, ViscosityModel};
+use super::{Lubricant, ViscosityModel};
 
 /// Roelands reference pressure p_r = 1/5.1e-9 = 1.96e8 Pa (thesis eq. 2.11).
 pub const ROELANDS_PR: f64 = 1.96e8;
@@ -78,7 +78,7 @@ pub fn log_viscosity_and_derivative(lub: &Lubricant, p: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case::{DensityModel, Rheology};
+    use crate::lubricant::{DensityModel, Rheology};
 
     fn lub(model: ViscosityModel) -> Lubricant {
         Lubricant {
