@@ -39,6 +39,7 @@ use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
 use crate::lubricant::{density, viscosity};
+use crate::reynolds::dense::DenseLu;
 use crate::reynolds::multigrid::{LineMultigrid, LineOperator};
 use crate::reynolds::residual::{self, Fields, ReynoldsGrid};
 use rayon::prelude::*;
@@ -210,6 +211,17 @@ pub(crate) struct System {
     pub applies: usize,
     /// the squeeze term of a time step (None: steady)
     pub squeeze: Option<Squeeze>,
+    /// precondition the plain Newton steps (no pseudo-transient shift) by a dense LU of the
+    /// exact Jacobian, kept over Newton steps and calls (a transient line contact, see
+    /// [`DensePreconditioner`]); false: the banded line preconditioner every step
+    pub dense_reuse: bool,
+    /// the kept dense preconditioner, whether it is due for a refresh, and the GMRES
+    /// iterations it has cost beyond a fresh one's since it was factored
+    pub dense_pc: Option<DensePreconditioner>,
+    pub dense_stale: bool,
+    pub dense_extra: usize,
+    /// dense factorisations so far
+    pub dense_builds: usize,
     scratch: Vec<f64>,
 }
 
@@ -283,6 +295,11 @@ impl System {
             n_mat,
             applies: 0,
             squeeze: None,
+            dense_reuse: false,
+            dense_pc: None,
+            dense_stale: false,
+            dense_extra: 0,
+            dense_builds: 0,
             scratch: vec![0.0; n],
         }
     }
@@ -561,6 +578,120 @@ impl System {
     }
 }
 
+/// Adds row by row the local linearisation of grid line `j` (the Poiseuille stencil along x with
+/// eps frozen and through eps, the wedge and squeeze terms on rho H with the elastic coupling
+/// `khat[|i - l|]` for |i - l| < khat.len(), identity rows on the active set `set`, the shift on
+/// the Reynolds rows) as `add(i, l, value)`, i and l cell indices along the line. With
+/// `khat` covering the whole line (ny == 1) this is the exact Jacobian dR/dP of the Newton
+/// step (without the H0 column and the load row).
+#[allow(clippy::too_many_arguments)]
+fn assemble_line(
+    rg: &ReynoldsGrid,
+    active: &[bool],
+    c0: f64,
+    st: &State,
+    c: &[f64],
+    set: &[bool],
+    shift: f64,
+    j: usize,
+    khat: &[f64],
+    add: &mut dyn FnMut(usize, usize, f64),
+) {
+    let rg = *rg;
+    let (nx, ny) = (rg.nx, rg.ny);
+    let band = khat.len() - 1;
+    let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
+    let f = st.fields(active);
+    for i in 0..nx {
+        let k = j * nx + i;
+        if set[k] {
+            add(i, i, 1.0);
+            continue;
+        }
+        add(i, i, shift);
+        let ck = c[k];
+        let nb = residual::neighbours(&rg, i, j);
+        for (d, &n) in nb.iter().enumerate() {
+            if d >= 2 && ny == 1 {
+                break;
+            }
+            let (cf, _) = residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 });
+            add(i, i, ck * cf);
+            if d < 2 {
+                if let Some(n) = n {
+                    if active[n] {
+                        let il = if d == 0 { i - 1 } else { i + 1 };
+                        add(i, il, -ck * cf);
+                    }
+                }
+            }
+        }
+        // Poiseuille through eps: eps_m = rho H^3 / (eta lambda), so
+        // d eps_m / dP_l = eps_m [(rho'/rho - eta'/eta) delta_ml + 3 Khat(m - l) / H_m]
+        let mut geps = [0.0; 3]; // coefficient of d eps_{k-1}, d eps_k, d eps_{k+1}
+        for (d, &n) in nb.iter().enumerate() {
+            if d >= 2 && ny == 1 {
+                break;
+            }
+            let d2 = if d < 2 { dx2 } else { dy2 };
+            match n {
+                Some(n) if active[n] => {
+                    let g = -0.5 / d2 * (st.p[n] - st.p[k]);
+                    geps[1] += g;
+                    if d < 2 {
+                        geps[if d == 0 { 0 } else { 2 }] += g;
+                    }
+                }
+                _ => geps[1] += 2.0 * st.p[k] / d2,
+            }
+        }
+        for (s, &g) in geps.iter().enumerate() {
+            if g == 0.0 || (s == 0 && i == 0) || (s == 2 && i + 1 >= nx) {
+                continue;
+            }
+            let im = i + s - 1;
+            let km = j * nx + im;
+            let e = st.eps[km];
+            if e == 0.0 || !active[km] {
+                continue;
+            }
+            add(
+                i,
+                im,
+                ck * g * e * (st.drho[km] / st.rho[km] - st.dlneta[km]),
+            );
+            let hm = st.h[km];
+            if hm > 0.0 {
+                let lo = im.saturating_sub(band);
+                let hi = (im + band).min(nx - 1);
+                for l in lo..=hi {
+                    if active[j * nx + l] {
+                        add(i, l, ck * g * e * 3.0 * khat[im.abs_diff(l)] / hm);
+                    }
+                }
+            }
+        }
+        let a = flow_stencil(&rg, active, c0, i, j);
+        for (o, &ao) in a.iter().enumerate() {
+            if ao == 0.0 || i < o {
+                continue;
+            }
+            let (im, km) = (i - o, k - o);
+            if !active[km] {
+                continue;
+            }
+            add(i, im, ck * ao * st.drho[km] * st.h[km]);
+            let lo = im.saturating_sub(band);
+            let hi = (im + band).min(nx - 1);
+            for l in lo..=hi {
+                if active[j * nx + l] {
+                    add(i, l, ck * ao * st.rho[km] * khat[im.abs_diff(l)]);
+                }
+            }
+        }
+    }
+}
+
 /// Least share of the Poiseuille part in the diagonal of a Reynolds row (c_k Pois_k, from
 /// [`System::scaling`]) for the cell to take part in the coarse-grid correction of the
 /// preconditioner. Aggregation coarse grids approximate the diffusion operator of the inlet
@@ -612,7 +743,7 @@ impl Preconditioner {
             mut north,
             ..
         } = LineOperator::zero(nx, ny, kl.min(nx - 1), ku.min(nx - 1), fine);
-        let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
+        let dy2 = rg.dy * rg.dy;
         let (active, khat) = (&sys.active[..], &sys.khat[..]);
         let c0 = sys.squeeze_c0();
         lines
@@ -620,95 +751,18 @@ impl Preconditioner {
             .with_min_len(min_len(nx))
             .enumerate()
             .for_each(|(j, m)| {
-                let f = st.fields(active);
-                for i in 0..nx {
-                    let k = j * nx + i;
-                    if set[k] {
-                        m.add(i, i, 1.0);
-                        continue;
-                    }
-                    m.add(i, i, shift);
-                    let ck = c[k];
-                    let nb = residual::neighbours(&rg, i, j);
-                    for (d, &n) in nb.iter().enumerate() {
-                        if d >= 2 && ny == 1 {
-                            break;
-                        }
-                        let (cf, _) = residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 });
-                        m.add(i, i, ck * cf);
-                        if d < 2 {
-                            if let Some(n) = n {
-                                if active[n] {
-                                    let il = if d == 0 { i - 1 } else { i + 1 };
-                                    m.add(i, il, -ck * cf);
-                                }
-                            }
-                        }
-                    }
-                    // Poiseuille through eps: eps_m = rho H^3 / (eta lambda), so
-                    // d eps_m / dP_l = eps_m [(rho'/rho - eta'/eta) delta_ml + 3 Khat(m - l) / H_m]
-                    let mut geps = [0.0; 3]; // coefficient of d eps_{k-1}, d eps_k, d eps_{k+1}
-                    for (d, &n) in nb.iter().enumerate() {
-                        if d >= 2 && ny == 1 {
-                            break;
-                        }
-                        let d2 = if d < 2 { dx2 } else { dy2 };
-                        match n {
-                            Some(n) if active[n] => {
-                                let g = -0.5 / d2 * (st.p[n] - st.p[k]);
-                                geps[1] += g;
-                                if d < 2 {
-                                    geps[if d == 0 { 0 } else { 2 }] += g;
-                                }
-                            }
-                            _ => geps[1] += 2.0 * st.p[k] / d2,
-                        }
-                    }
-                    for (s, &g) in geps.iter().enumerate() {
-                        if g == 0.0 || (s == 0 && i == 0) || (s == 2 && i + 1 >= nx) {
-                            continue;
-                        }
-                        let im = i + s - 1;
-                        let km = j * nx + im;
-                        let e = st.eps[km];
-                        if e == 0.0 || !active[km] {
-                            continue;
-                        }
-                        m.add(
-                            i,
-                            im,
-                            ck * g * e * (st.drho[km] / st.rho[km] - st.dlneta[km]),
-                        );
-                        let hm = st.h[km];
-                        if hm > 0.0 {
-                            let lo = im.saturating_sub(band);
-                            let hi = (im + band).min(nx - 1);
-                            for l in lo..=hi {
-                                if active[j * nx + l] {
-                                    m.add(i, l, ck * g * e * 3.0 * khat[im.abs_diff(l)] / hm);
-                                }
-                            }
-                        }
-                    }
-                    let a = flow_stencil(&rg, active, c0, i, j);
-                    for (o, &ao) in a.iter().enumerate() {
-                        if ao == 0.0 || i < o {
-                            continue;
-                        }
-                        let (im, km) = (i - o, k - o);
-                        if !active[km] {
-                            continue;
-                        }
-                        m.add(i, im, ck * ao * st.drho[km] * st.h[km]);
-                        let lo = im.saturating_sub(band);
-                        let hi = (im + band).min(nx - 1);
-                        for l in lo..=hi {
-                            if active[j * nx + l] {
-                                m.add(i, l, ck * ao * st.rho[km] * khat[im.abs_diff(l)]);
-                            }
-                        }
-                    }
-                }
+                assemble_line(
+                    &rg,
+                    active,
+                    c0,
+                    st,
+                    c,
+                    set,
+                    shift,
+                    j,
+                    khat,
+                    &mut |i, l, v| m.add(i, l, v),
+                )
             });
         // coupling to the cells below and above: the y faces of the Poiseuille term, with eps
         // of the neighbour frozen except for its own pressure dependence (rho'/rho - eta'/eta)
@@ -787,6 +841,72 @@ impl Preconditioner {
             *o -= z * dh0;
         }
         out[n] = dh0;
+    }
+}
+
+/// The exact Jacobian of a line contact (ny == 1), bordered with the H0 column and the load
+/// row, LU-factored ([`crate::reynolds::dense`]): M = [[J_P, dR/dH0], [s_L dX, 0]] with J_P
+/// from [`assemble_line`] with the elastic coupling over the whole line. On an infinite line
+/// the influence coefficients decay only logarithmically, so a banded approximation leaves
+/// the far coupling to GMRES (a transient step of 1024 cells needed ~75 GMRES iterations per
+/// Newton step with band 4, and widening the band costs more than it saves); with M exact,
+/// GMRES converges in one or two iterations (the factors are kept in single precision). The factorisation (2 n^3 / 3 flops) is therefore kept over
+/// Newton steps and time steps and used as the preconditioner of later, nearby Jacobians
+/// (a Newton-Krylov method with a lagged preconditioner, Knoll & Keyes 2004, sec. 3.1.2),
+/// refreshed when GMRES needs more iterations (see `ehl::newton`).
+pub(crate) struct DensePreconditioner {
+    lu: DenseLu,
+}
+
+impl DensePreconditioner {
+    /// Assemble at the state `st` (scaling `c`, active set `set`, `bcol` = dR/dH0, `shift` on
+    /// the Reynolds rows) and factor. None on a 2D grid or if the matrix is singular.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        sys: &System,
+        st: &State,
+        c: &[f64],
+        set: &[bool],
+        bcol: &[f64],
+        shift: f64,
+    ) -> Option<DensePreconditioner> {
+        let rg = sys.rg;
+        if rg.ny != 1 {
+            return None;
+        }
+        let n = rg.nx;
+        let m = n + 1;
+        let scale = sys.phys.ph * sys.hscale;
+        let khat: Vec<f64> = (0..n)
+            .map(|d| sys.op.coefficient(d as isize, 0) * scale)
+            .collect();
+        let mut a = vec![0.0; m * m];
+        assemble_line(
+            &rg,
+            &sys.active,
+            sys.squeeze_c0(),
+            st,
+            c,
+            set,
+            shift,
+            0,
+            &khat,
+            &mut |i, l, v| a[i * m + l] += v,
+        );
+        let w = sys.load_scale() * sys.area;
+        for k in 0..n {
+            a[k * m + n] = bcol[k];
+            if sys.active[k] {
+                a[n * m + k] = w;
+            }
+        }
+        DenseLu::factor(a, m).map(|lu| DensePreconditioner { lu })
+    }
+
+    /// out = M^-1 r (length n + 1; the last entry is H0).
+    pub fn apply(&self, r: &[f64], out: &mut [f64]) {
+        out.copy_from_slice(r);
+        self.lu.solve(out);
     }
 }
 
