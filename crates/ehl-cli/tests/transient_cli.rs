@@ -45,8 +45,14 @@ fn groove_text() -> String {
 /// returns the output folder.
 #[track_caller]
 fn run_reduced(w: &Work, extra: &[&str]) -> PathBuf {
+    run_ok(w, &[&REDUCED[..], extra].concat())
+}
+
+/// `ehl run case.toml --quiet --out results <extra>`; asserts exit status 0 and returns the
+/// output folder.
+#[track_caller]
+fn run_ok(w: &Work, extra: &[&str]) -> PathBuf {
     let mut args = vec!["run", "case.toml", "--quiet", "--out", "results"];
-    args.extend_from_slice(&REDUCED);
     args.extend_from_slice(extra);
     let o = w.ehl(&args);
     assert_eq!(o.code, 0, "{args:?}: stderr: {}", o.stderr);
@@ -477,17 +483,7 @@ fn smooth_duration_run_stays_on_the_steady_solution() {
     let steady = edit(&smooth, "travel = ", "");
 
     let w = Work::new(&transient);
-    let o = w.ehl(&[
-        "run",
-        "case.toml",
-        "--quiet",
-        "--out",
-        "results",
-        "--set",
-        "grid.nx=192",
-    ]);
-    assert_eq!(o.code, 0, "{}", o.stderr);
-    let dir = w.file("results");
+    let dir = run_ok(&w, &["--set", "grid.nx=192"]);
     let s = summary(&dir);
     assert_eq!(s["converged"], true);
     assert_eq!(s["steps"], 10);
@@ -529,17 +525,7 @@ fn smooth_duration_run_stays_on_the_steady_solution() {
     // the steady run of the same case (no travel): the same solution, to the solver tolerance
     // (both start from the same steady solve; measured: equal to the last bit)
     let ws = Work::new(&steady);
-    let o = ws.ehl(&[
-        "run",
-        "case.toml",
-        "--quiet",
-        "--out",
-        "results",
-        "--set",
-        "grid.nx=192",
-    ]);
-    assert_eq!(o.code, 0, "{}", o.stderr);
-    let st = summary(&ws.file("results"));
+    let st = summary(&run_ok(&ws, &["--set", "grid.nx=192"]));
     assert!(st.get("steps").is_none(), "a steady run has no `steps`");
     assert!(!ws.file("results").join("timeline.csv").exists());
     for key in [

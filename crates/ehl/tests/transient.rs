@@ -117,6 +117,38 @@ fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The steady solution of the smooth line contact of [`run_line`] (no feature, no time step).
+fn smooth_steady(c: &LineCase, nx: usize, x_range: (f64, f64), srr: f64) -> (Grid, StepResult) {
+    let (grid, mut steps, _) = run_line(
+        c,
+        nx,
+        x_range,
+        srr,
+        &none(),
+        &none(),
+        1.0,
+        0,
+        TimeScheme::Bdf2,
+    );
+    (grid, steps.remove(0))
+}
+
+/// Asserts that every step converged and stayed on `reference`: pressure within 1e-6 `ph`, film
+/// within 1e-6 `hc`.
+#[track_caller]
+fn assert_every_step_on(steps: &[StepResult], reference: &StepResult, ph: f64, hc: f64) {
+    for s in steps {
+        assert!(s.converged, "step {}: {}", s.step, s.termination);
+        let dp = max_abs_diff(&s.pressure, &reference.pressure) / ph;
+        let dh = max_abs_diff(&s.film, &reference.film) / hc;
+        assert!(
+            dp < 1e-6 && dh < 1e-6,
+            "step {}: dp {dp:e} dh {dh:e}",
+            s.step
+        );
+    }
+}
+
 /// Smooth surfaces in a transient run stay on the steady solution: the squeeze term of an
 /// unchanging film is zero, so every step must reproduce step 0 to the Newton tolerance
 /// (1e-8 relative residual; we allow 1e-6 p_h and 1e-6 of the film, two orders above it).
@@ -143,17 +175,7 @@ fn smooth_transient_stays_on_the_steady_solution() {
     );
     assert_eq!(steps.len(), 11);
     let s0 = &steps[0];
-    let hc = s0.film[128];
-    for s in &steps[1..] {
-        assert!(s.converged, "step {}: {}", s.step, s.termination);
-        let dp = max_abs_diff(&s.pressure, &s0.pressure) / c.ph;
-        let dh = max_abs_diff(&s.film, &s0.film) / hc;
-        assert!(
-            dp < 1e-6 && dh < 1e-6,
-            "step {}: dp {dp:e} dh {dh:e}",
-            s.step
-        );
-    }
+    assert_every_step_on(&steps[1..], s0, c.ph, s0.film[128]);
 }
 
 /// Film at x = 0 by linear interpolation between the two nearest cell centres.
@@ -170,18 +192,8 @@ fn film_at_centre(grid: &Grid, h: &[f64]) -> f64 {
 fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize) -> (f64, f64) {
     let c = line(m, l);
     let (xin, xout) = (-4.5, 1.5);
-    let (grid, s0, _) = run_line(
-        &c,
-        nx,
-        (xin, xout),
-        0.0,
-        &none(),
-        &none(),
-        1.0,
-        0,
-        TimeScheme::Bdf2,
-    );
-    let hc = film_at_centre(&grid, &s0[0].film);
+    let (grid, s0) = smooth_steady(&c, nx, (xin, xout), 0.0);
+    let hc = film_at_centre(&grid, &s0.film);
     let ai = 0.05 * hc;
     let lambda = lambda_b * c.b;
     // one cell per step; the start's disturbance travels at u_e from the inlet to the centre
@@ -329,27 +341,8 @@ fn zero_depth_groove_reproduces_the_smooth_solution() {
         TimeScheme::Bdf2,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
-    let (_, smooth, _) = run_line(
-        &c,
-        nx,
-        (-4.5, 1.5),
-        0.5,
-        &none(),
-        &none(),
-        1.0,
-        0,
-        TimeScheme::Bdf2,
-    );
-    let hc = smooth[0].film[nx / 2];
-    for s in &steps {
-        let dp = max_abs_diff(&s.pressure, &smooth[0].pressure) / c.ph;
-        let dh = max_abs_diff(&s.film, &smooth[0].film) / hc;
-        assert!(
-            dp < 1e-6 && dh < 1e-6,
-            "step {}: dp {dp:e} dh {dh:e}",
-            s.step
-        );
-    }
+    let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 0.5);
+    assert_every_step_on(&steps, &smooth, c.ph, smooth.film[nx / 2]);
 }
 
 /// A groove on a body that stands still (SRR = 2: u2 = 0, the groove on body 2) is a steady
@@ -376,27 +369,9 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
     let s0 = &steps[0];
     let hc = s0.film[nx / 2];
     // the groove changes the steady film: the identity is not the smooth solution
-    let (_, smooth, _) = run_line(
-        &c,
-        nx,
-        (-4.5, 1.5),
-        2.0,
-        &none(),
-        &none(),
-        1.0,
-        0,
-        TimeScheme::Bdf2,
-    );
-    assert!(max_abs_diff(&s0.film, &smooth[0].film) / hc > 0.05);
-    for s in &steps[1..] {
-        let dp = max_abs_diff(&s.pressure, &s0.pressure) / c.ph;
-        let dh = max_abs_diff(&s.film, &s0.film) / hc;
-        assert!(
-            dp < 1e-6 && dh < 1e-6,
-            "step {}: dp {dp:e} dh {dh:e}",
-            s.step
-        );
-    }
+    let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 2.0);
+    assert!(max_abs_diff(&s0.film, &smooth.film) / hc > 0.05);
+    assert_every_step_on(&steps[1..], s0, c.ph, hc);
 }
 
 /// Mass: at every step of a groove's passage (the groove on the faster body, SRR = 0.5), the
@@ -506,18 +481,8 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
     let (xin, xout) = (-4.5, 1.5);
     let dx = (xout - xin) / nx as f64; // in b
     let u1 = c.ue * (1.0 + 0.5 * srr);
-    let (grid, s0, _) = run_line(
-        &c,
-        nx,
-        (xin, xout),
-        srr,
-        &none(),
-        &none(),
-        1.0,
-        0,
-        TimeScheme::Bdf2,
-    );
-    let hc = film_at_centre(&grid, &s0[0].film);
+    let (grid, s0) = smooth_steady(&c, nx, (xin, xout), srr);
+    let hc = film_at_centre(&grid, &s0.film);
     // the surface moves one cell per step; the start's disturbance leaves the contact centre
     // after about 3 b / u_e
     let dt = dx * c.b / u1;
@@ -539,9 +504,8 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let xs: Vec<f64> = (0..nx).map(|i| grid.x(i) / c.b).collect();
-    let dh = |s: &StepResult| -> Vec<f64> {
-        s.film.iter().zip(&s0[0].film).map(|(a, b)| a - b).collect()
-    };
+    let dh =
+        |s: &StepResult| -> Vec<f64> { s.film.iter().zip(&s0.film).map(|(a, b)| a - b).collect() };
     let (ha, hb) = (dh(&steps[flush]), dh(&steps[flush + lag]));
     let lam = dominant_wavelength(&xs, &hb, (-0.8, 0.8));
     let r = ((-0.6 - xin) / dx) as usize..((0.6 - xin) / dx) as usize;

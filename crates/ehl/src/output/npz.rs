@@ -5,30 +5,69 @@
 //! same shape when the solution has them. `field[j, i]` is the value at `(x[i], y[j])`. Read with
 //! `numpy.load("fields.npz")`.
 
+use crate::grid::Grid;
 use crate::solution::Solution;
-use crate::Result;
+use crate::{Error, Result};
 use ndarray::{Array1, Array2};
-use ndarray_npy::NpzWriter;
+use ndarray_npy::{NpzWriter, WriteNpyExt};
+use std::io::BufWriter;
 use std::path::Path;
 
 /// Writes `fields.npz` to `path`.
 pub fn write(path: &Path, solution: &Solution) -> Result<()> {
-    let err = |e: &dyn std::fmt::Display| super::io_err(path, e);
     let g = &solution.grid;
-    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
-    let mut npz = NpzWriter::new(std::io::BufWriter::new(file));
-    npz.add_array("x", &Array1::from(g.xs()))
-        .map_err(|e| err(&e))?;
-    npz.add_array("y", &Array1::from(g.ys()))
-        .map_err(|e| err(&e))?;
+    let mut npz = Npz::create(path)?;
+    npz.add_grid(g)?;
     for (name, field) in super::named_fields(solution) {
         let a = Array2::from_shape_vec((g.ny, g.nx), field.to_vec())
-            .map_err(|e| err(&format!("field `{name}`: {e}")))?;
-        npz.add_array(name, &a).map_err(|e| err(&e))?;
+            .map_err(|e| npz.err(format!("field `{name}`: {e}")))?;
+        npz.add(name, &a)?;
     }
-    let w = npz.finish().map_err(|e| err(&e))?;
-    w.into_inner()
-        .map_err(|e| err(&e.error().to_string()))?
-        .sync_all()
-        .map_err(|e| err(&e))
+    npz.finish()
+}
+
+/// An uncompressed npz file being written (`fields.npz`, `frames.npz`); every error names the
+/// file.
+pub(super) struct Npz<'p> {
+    path: &'p Path,
+    writer: NpzWriter<BufWriter<std::fs::File>>,
+}
+
+impl<'p> Npz<'p> {
+    /// Creates (or truncates) the file at `path`.
+    pub(super) fn create(path: &'p Path) -> Result<Self> {
+        let file = std::fs::File::create(path).map_err(|e| super::io_err(path, e))?;
+        Ok(Npz {
+            path,
+            writer: NpzWriter::new(BufWriter::new(file)),
+        })
+    }
+
+    /// The error of this file with `message`.
+    pub(super) fn err(&self, message: impl std::fmt::Display) -> Error {
+        super::io_err(self.path, message)
+    }
+
+    /// Adds the array `name`.
+    pub(super) fn add<T: WriteNpyExt + ?Sized>(&mut self, name: &str, array: &T) -> Result<()> {
+        self.writer
+            .add_array(name, array)
+            .map_err(|e| super::io_err(self.path, e))
+    }
+
+    /// Adds `x` (nx) and `y` (ny), the cell-centre coordinates of `g` (m).
+    pub(super) fn add_grid(&mut self, g: &Grid) -> Result<()> {
+        self.add("x", &Array1::from(g.xs()))?;
+        self.add("y", &Array1::from(g.ys()))
+    }
+
+    /// Finishes the archive, flushes and syncs the file.
+    pub(super) fn finish(self) -> Result<()> {
+        let path = self.path;
+        let w = self.writer.finish().map_err(|e| super::io_err(path, e))?;
+        w.into_inner()
+            .map_err(|e| super::io_err(path, e.error()))?
+            .sync_all()
+            .map_err(|e| super::io_err(path, e))
+    }
 }

@@ -21,8 +21,9 @@ use crate::case::{Case, Kind, Shape};
 use crate::grid::Grid;
 use crate::solution::Solution;
 use crate::{Error, Result};
-use plotters::chart::MeshStyle;
-use plotters::coord::Shift;
+use plotters::chart::{DualCoordChartContext, MeshStyle, SeriesLabelStyle};
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
@@ -59,12 +60,23 @@ pub(super) fn draw_err(path: &Path, e: impl std::fmt::Display) -> Error {
     }
 }
 
+/// Renders a picture of the standard size into `path` (a PNG): [`render_sized`].
 fn render(
     path: &Path,
     f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
 ) -> Result<()> {
+    render_sized(path, (WIDTH, HEIGHT), f)
+}
+
+/// Renders a picture of `size` (px) into `path` (a PNG) on white, with the embedded font; the
+/// error names the file.
+pub(super) fn render_sized(
+    path: &Path,
+    size: (u32, u32),
+    f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
+) -> Result<()> {
     ensure_font().map_err(|e| draw_err(path, e))?;
-    let root = BitMapBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
+    let root = BitMapBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
     f(&root).map_err(|e| draw_err(path, e))?;
     root.present().map_err(|e| draw_err(path, e))?;
@@ -85,6 +97,11 @@ pub fn fmt_sig(v: f64, sig: usize) -> String {
     }
     let mag = v.abs().log10().floor() as i64;
     let dec = (sig as i64 - 1 - mag).clamp(0, 12) as usize;
+    fmt_fixed(v, dec)
+}
+
+/// `v` with `dec` decimals, `-0.000` written `0.000`.
+pub(super) fn fmt_fixed(v: f64, dec: usize) -> String {
     let s = format!("{v:.dec$}");
     if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
         s[1..].to_string()
@@ -243,6 +260,151 @@ impl Sampler<'_> {
     }
 }
 
+/// The colour of map cells with no material (non-finite values, e.g. the film beyond the end of
+/// the shorter roller).
+pub(super) const NO_MATERIAL: RGBColor = RGBColor(190, 190, 190);
+
+/// A chart over f64 x f64 (a map, a colour bar, a line chart).
+pub(super) type Chart2d<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Font sizes (px) of the tick labels and of the axis descriptions of a chart.
+#[derive(Clone, Copy)]
+pub(super) struct Fonts {
+    pub(super) label: f64,
+    pub(super) desc: f64,
+}
+
+/// The x and y ranges (mm) of a map of a field on `g`.
+pub(super) fn map_ranges(g: &Grid) -> (Range<f64>, Range<f64>) {
+    (
+        drawable(x_range_mm(g)),
+        drawable(g.y_min * 1e3..g.y_max() * 1e3),
+    )
+}
+
+/// Draws the axes of a field map on `chart` (built over [`map_ranges`]): no grid lines, 9 x and
+/// `y_labels` y tick labels with as many decimals as the ranges need, `x_desc` (when given) and
+/// `y_desc`.
+pub(super) fn draw_map_axes(
+    chart: &mut Chart2d,
+    y_labels: usize,
+    fonts: Fonts,
+    x_desc: Option<&str>,
+    y_desc: &str,
+) -> DrawResult<()> {
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
+    let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
+    let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+    let mut mesh = chart.configure_mesh();
+    mesh.disable_mesh()
+        .x_labels(9)
+        .y_labels(y_labels)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .label_style(text_style(fonts.label, BLACK))
+        .axis_desc_style(text_style(fonts.desc, BLACK))
+        .y_desc(y_desc);
+    if let Some(d) = x_desc {
+        mesh.x_desc(d);
+    }
+    mesh.draw()?;
+    Ok(())
+}
+
+/// Paints a field map into the plotting area of `chart` (built over [`map_ranges`] of `g`, y
+/// up), pixel by pixel: `values` (SI, row-major on `g`) sampled at each pixel's centre, times
+/// `scale`, coloured by `cmap` over `range` (drawable); non-finite values in [`NO_MATERIAL`]
+/// grey. Frames the map and returns its plotting area (pixel coordinates).
+pub(super) fn paint_map<'b>(
+    chart: &Chart2d<'_, 'b>,
+    g: &Grid,
+    values: &[f64],
+    scale: f64,
+    range: Range<f64>,
+    cmap: ColorMap,
+) -> DrawResult<DrawingArea<BitMapBackend<'b>, Shift>> {
+    let mm = 1e3;
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
+    let plot = chart.plotting_area().strip_coord_spec();
+    let (w, h) = plot.dim_in_pixel();
+    let sampler = Sampler { g, v: values };
+    let Range { start: lo, end: hi } = range;
+    for py in 0..h {
+        let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
+        for px in 0..w {
+            let x = (xr.start + (px as f64 + 0.5) / w as f64 * xspan) / mm;
+            let v = sampler.at(x, y);
+            let c = if v.is_finite() {
+                let (r, gg, b) = cmap.color((v * scale - lo) / (hi - lo));
+                RGBColor(r, gg, b)
+            } else {
+                NO_MATERIAL
+            };
+            plot.draw_pixel((px as i32, py as i32), &c)?;
+        }
+    }
+    draw_frame(&plot)?;
+    Ok(plot)
+}
+
+/// A thin black frame around the whole of `area`.
+fn draw_frame(area: &DrawingArea<BitMapBackend, Shift>) -> DrawResult<()> {
+    let (w, h) = area.dim_in_pixel();
+    area.draw(&Rectangle::new(
+        [(0, 0), (w as i32 - 1, h as i32 - 1)],
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    Ok(())
+}
+
+/// Draws a colour bar on `bar` (a chart over `0..1` x the colour range, with a right label
+/// area): `y_labels` tick labels on the right (ticks `tick_size` px long when given), `desc`,
+/// and the colours of `cmap` from the bottom to the top, framed.
+pub(super) fn draw_colorbar_on(
+    bar: &mut Chart2d,
+    cmap: ColorMap,
+    y_labels: usize,
+    fonts: Fonts,
+    tick_size: Option<i32>,
+    desc: &str,
+) -> DrawResult<()> {
+    let range = bar.y_range();
+    let span = range.end - range.start;
+    let fmt = move |v: &f64| fmt_tick(*v, span);
+    let mut mesh = bar.configure_mesh();
+    mesh.disable_mesh()
+        .disable_x_axis()
+        .y_labels(y_labels)
+        .y_label_formatter(&fmt)
+        .label_style(text_style(fonts.label, BLACK))
+        .axis_desc_style(text_style(fonts.desc, BLACK))
+        .y_desc(desc);
+    if let Some(size) = tick_size {
+        mesh.set_tick_mark_size(LabelAreaPosition::Right, size);
+    }
+    mesh.draw()?;
+    let plot = bar.plotting_area().strip_coord_spec();
+    let (w, h) = plot.dim_in_pixel();
+    for py in 0..h {
+        let t = 1.0 - (py as f64 + 0.5) / h as f64;
+        let (r, g, b) = cmap.color(t);
+        plot.draw(&PathElement::new(
+            vec![(0, py as i32), (w as i32 - 1, py as i32)],
+            ShapeStyle::from(&RGBColor(r, g, b)).stroke_width(1),
+        ))?;
+    }
+    draw_frame(&plot)
+}
+
+/// The fonts of `pressure.png`, `film.png` and `centerline.png`.
+const MAP_FONTS: Fonts = Fonts {
+    label: 16.0,
+    desc: 18.0,
+};
+
 /// What a map shows.
 struct MapSpec<'a> {
     title: &'a str,
@@ -267,11 +429,8 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
     let area = titled(root, spec.title, &spec.lines)?;
     let (main, bar_area) = area.split_horizontally(WIDTH - 150);
     let mm = 1e3;
-    let xr = drawable(g.x_min * mm..g.x_max() * mm);
-    let yr = drawable(g.y_min * mm..g.y_max() * mm);
+    let (xr, yr) = map_ranges(g);
     let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
-    let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
-    let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
     // equal scales when that costs at most half of the frame (a ball's contact looks round; the
     // map then keeps next to its colour bar); otherwise fill the frame and say how much the
     // picture is stretched
@@ -294,42 +453,24 @@ fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawRes
         .margin_bottom(24 + vpad)
         .x_label_area_size(62)
         .y_label_area_size(86)
-        .build_cartesian_2d(xr.clone(), yr.clone())?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_labels(9)
-        .y_labels(9)
-        .x_label_formatter(&x_fmt)
-        .y_label_formatter(&y_fmt)
-        .label_style(text_style(16.0, BLACK))
-        .axis_desc_style(text_style(18.0, BLACK))
-        .x_desc("x, rolling direction (mm)   —   inlet ← → outlet")
-        .y_desc(spec.y_label)
-        .draw()?;
+        .build_cartesian_2d(xr, yr)?;
+    draw_map_axes(
+        &mut chart,
+        9,
+        MAP_FONTS,
+        Some("x, rolling direction (mm)   —   inlet ← → outlet"),
+        spec.y_label,
+    )?;
     // the image, pixel by pixel
-    let plot = chart.plotting_area().strip_coord_spec();
+    let plot = paint_map(
+        &chart,
+        g,
+        spec.values,
+        spec.scale,
+        drawable(spec.range.clone()),
+        spec.cmap,
+    )?;
     let (w, h) = plot.dim_in_pixel();
-    let sampler = Sampler { g, v: spec.values };
-    let Range { start: lo, end: hi } = drawable(spec.range.clone());
-    for py in 0..h {
-        let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
-        for px in 0..w {
-            let x = (xr.start + (px as f64 + 0.5) / w as f64 * xspan) / mm;
-            let v = sampler.at(x, y);
-            let c = if v.is_finite() {
-                let (r, gg, b) = spec.cmap.color((v * spec.scale - lo) / (hi - lo));
-                RGBColor(r, gg, b)
-            } else {
-                RGBColor(190, 190, 190)
-            };
-            plot.draw_pixel((px as i32, py as i32), &c)?;
-        }
-    }
-    plot.draw(&Rectangle::new(
-        [(0, 0), (w as i32 - 1, h as i32 - 1)],
-        ShapeStyle::from(&BLACK).stroke_width(1),
-    ))?;
     if let Some((mx, my, label)) = &spec.marker {
         let p = chart.backend_coord(&(mx * mm, my * mm));
         let base = chart.plotting_area().get_base_pixel();
@@ -386,9 +527,6 @@ fn draw_colorbar(
     spec: &MapSpec,
     vpad: i32,
 ) -> DrawResult<()> {
-    let range = drawable(spec.range.clone());
-    let span = range.end - range.start;
-    let fmt = move |v: &f64| fmt_tick(*v, span);
     let mut bar = ChartBuilder::on(area)
         .margin_top(10 + vpad)
         .margin_bottom(24 + vpad)
@@ -396,32 +534,15 @@ fn draw_colorbar(
         .margin_right(10)
         .x_label_area_size(62)
         .right_y_label_area_size(80)
-        .build_cartesian_2d(0.0..1.0, range)?;
-    bar.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .set_tick_mark_size(LabelAreaPosition::Right, 6)
-        .y_labels(8)
-        .y_label_formatter(&fmt)
-        .label_style(text_style(16.0, BLACK))
-        .axis_desc_style(text_style(18.0, BLACK))
-        .y_desc(spec.bar_label.as_str())
-        .draw()?;
-    let plot = bar.plotting_area().strip_coord_spec();
-    let (w, h) = plot.dim_in_pixel();
-    for py in 0..h {
-        let t = 1.0 - (py as f64 + 0.5) / h as f64;
-        let (r, g, b) = spec.cmap.color(t);
-        plot.draw(&PathElement::new(
-            vec![(0, py as i32), (w as i32 - 1, py as i32)],
-            ShapeStyle::from(&RGBColor(r, g, b)).stroke_width(1),
-        ))?;
-    }
-    plot.draw(&Rectangle::new(
-        [(0, 0), (w as i32 - 1, h as i32 - 1)],
-        ShapeStyle::from(&BLACK).stroke_width(1),
-    ))?;
-    Ok(())
+        .build_cartesian_2d(0.0..1.0, drawable(spec.range.clone()))?;
+    draw_colorbar_on(
+        &mut bar,
+        spec.cmap,
+        8,
+        MAP_FONTS,
+        Some(6),
+        spec.bar_label.as_str(),
+    )
 }
 
 // ---------------------------------------------------------------- profiles
@@ -481,6 +602,36 @@ fn crossing(a: (f64, f64), b: (f64, f64), range: &Range<f64>) -> (f64, f64) {
     (a.0 + t.clamp(0.0, 1.0) * (b.0 - a.0), edge)
 }
 
+/// A chart over f64 x f64 with a second y axis on the right.
+pub(super) type DualChart2d<'a, 'b> = DualCoordChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<RangedCoordf64, RangedCoordf64>,
+    Cartesian2d<RangedCoordf64, RangedCoordf64>,
+>;
+
+/// Draws the right y axis of `chart` (its secondary range, `range`) in the film colour: `y_labels`
+/// tick labels with as many decimals as the range needs, and `desc`.
+pub(super) fn draw_right_axis(
+    chart: &mut DualChart2d,
+    range: &Range<f64>,
+    y_labels: usize,
+    fonts: Fonts,
+    desc: &str,
+) -> DrawResult<()> {
+    let span = range.end - range.start;
+    let fmt = move |v: &f64| fmt_tick(*v, span);
+    chart
+        .configure_secondary_axes()
+        .y_labels(y_labels)
+        .y_label_formatter(&fmt)
+        .label_style(text_style(fonts.label, FILM_COLOR))
+        .axis_desc_style(text_style(fonts.desc, FILM_COLOR))
+        .y_desc(desc)
+        .draw()?;
+    Ok(())
+}
+
 /// Draws a profile plot along x (mm) with a left axis and an optional right axis.
 fn draw_profile(
     root: &DrawingArea<BitMapBackend, Shift>,
@@ -499,8 +650,6 @@ fn draw_profile(
     let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
     let l_fmt = move |v: &f64| fmt_tick(*v, lspan);
     let rrange = drawable(right.map(|r| r.range.clone()).unwrap_or(0.0..1.0));
-    let rspan = rrange.end - rrange.start;
-    let r_fmt = move |v: &f64| fmt_tick(*v, rspan);
     let mut chart = ChartBuilder::on(&area)
         .margin_left(10)
         .margin_right(if right.is_some() { 10 } else { 40 })
@@ -518,14 +667,7 @@ fn draw_profile(
         .y_desc(left.label.as_str())
         .draw()?;
     if let Some(r) = right {
-        chart
-            .configure_secondary_axes()
-            .y_labels(8)
-            .y_label_formatter(&r_fmt)
-            .label_style(text_style(16.0, FILM_COLOR))
-            .axis_desc_style(text_style(18.0, FILM_COLOR))
-            .y_desc(r.label.as_str())
-            .draw()?;
+        draw_right_axis(&mut chart, &rrange, 8, MAP_FONTS, r.label.as_str())?;
     }
     for c in &left.curves {
         let style = ShapeStyle::from(&c.color).stroke_width(if c.dashed { 2 } else { 3 });
@@ -604,16 +746,11 @@ fn draw_profile(
         )?;
     }
     // the legend last, so that nothing covers it
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .margin(12)
-        .legend_area_size(36)
-        .label_font(text_style(16.0, BLACK))
-        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
-        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
-        .draw()?;
-    Ok(())
+    draw_legend(
+        chart.configure_series_labels(),
+        SeriesLabelPosition::UpperRight,
+        LEGEND,
+    )
 }
 
 // ---------------------------------------------------------------- the three pictures
@@ -1304,6 +1441,55 @@ where
         .axis_desc_style(text_style(18.0, BLACK))
 }
 
+/// The look of a legend box: font size (px), length of its line samples (px), distance to the
+/// edge of the plot (px) and opacity of its white background.
+#[derive(Clone, Copy)]
+pub(super) struct LegendLook {
+    pub(super) font: f64,
+    pub(super) sample: u32,
+    pub(super) margin: u32,
+    pub(super) opacity: f64,
+}
+
+/// The legend of the pictures.
+pub(super) const LEGEND: LegendLook = LegendLook {
+    font: 16.0,
+    sample: 36,
+    margin: 12,
+    opacity: 0.9,
+};
+
+/// Draws the legend `labels` (`chart.configure_series_labels()`) at `position`, in a box with a
+/// grey border.
+pub(super) fn draw_legend<'a, 'c: 'a, CT: CoordTranslate>(
+    mut labels: SeriesLabelStyle<'a, '_, BitMapBackend<'c>, CT>,
+    position: SeriesLabelPosition,
+    look: LegendLook,
+) -> DrawResult<()> {
+    labels
+        .position(position)
+        .margin(look.margin)
+        .legend_area_size(look.sample)
+        .label_font(text_style(look.font, BLACK))
+        .background_style(ShapeStyle::from(&WHITE.mix(look.opacity)).filled())
+        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
+        .draw()?;
+    Ok(())
+}
+
+/// `text` in grey, `size` px, in the middle of the plotting area of `chart` (a panel with
+/// nothing to draw).
+pub(super) fn say_in_middle(chart: &Chart2d, text: &str, size: f64) -> DrawResult<()> {
+    let plot = chart.plotting_area().strip_coord_spec();
+    let (pw, ph) = plot.dim_in_pixel();
+    plot.draw_text(
+        text,
+        &text_style(size, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
+        (pw as i32 / 2, ph as i32 / 2),
+    )?;
+    Ok(())
+}
+
 /// The corner of the plot area with the fewest data points (in its outer 45 % of x and 35 %
 /// of y), so the legend hides as little of the curves as it can; upper right on a tie.
 pub(super) fn legend_corner(
@@ -1391,14 +1577,7 @@ pub fn write_xy(
             .y_desc(y_label)
             .draw()?;
         if pts.is_empty() {
-            let plot = chart.plotting_area().strip_coord_spec();
-            let (pw, ph) = plot.dim_in_pixel();
-            plot.draw_text(
-                "no finite point to draw",
-                &text_style(20.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
-                (pw as i32 / 2, ph as i32 / 2),
-            )?;
-            return Ok(());
+            return say_in_middle(&chart, "no finite point to draw", 20.0);
         }
         for (k, s) in series.iter().enumerate() {
             let color = SERIES_COLORS[k % SERIES_COLORS.len()];
@@ -1422,15 +1601,10 @@ pub fn write_xy(
                     .map(|&q| Circle::new(q, 4, ShapeStyle::from(&color).filled())),
             )?;
         }
-        chart
-            .configure_series_labels()
-            .position(legend_corner(&pts, (x0, x1), (y0, y1)))
-            .margin(12)
-            .legend_area_size(36)
-            .label_font(text_style(16.0, BLACK))
-            .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
-            .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
-            .draw()?;
-        Ok(())
+        draw_legend(
+            chart.configure_series_labels(),
+            legend_corner(&pts, (x0, x1), (y0, y1)),
+            LEGEND,
+        )
     })
 }

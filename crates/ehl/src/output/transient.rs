@@ -25,20 +25,21 @@
 //! so writing it needs at most one more copy of half the frames.
 
 use super::colormap::ColorMap;
+use super::npz::Npz;
 use super::plot::{
-    arg_max, arg_min, clip, draw_err, drawable, drawable_range, ensure_font, film_unit, film_word,
-    fit, fmt_sig, fmt_tick, legend_corner, line_chart_mesh, text_style, titled, y_axis_label,
-    Sampler, FILM_COLOR, GREY, PRESSURE_COLOR, SERIES_COLORS,
+    arg_max, arg_min, clip, draw_colorbar_on, draw_err, draw_legend, draw_map_axes,
+    draw_right_axis, drawable, drawable_range, ensure_font, film_unit, film_word, fit, fmt_fixed,
+    fmt_sig, fmt_tick, legend_corner, line_chart_mesh, map_ranges, paint_map, render_sized,
+    say_in_middle, text_style, titled, y_axis_label, Fonts, LegendLook, FILM_COLOR, GREY, LEGEND,
+    PRESSURE_COLOR, SERIES_COLORS,
 };
 use crate::case::Case;
 use crate::grid::Grid;
 use crate::solution::{Fields, Frame, Solution, StepRecord, Summary, TransientRecord};
 use crate::Result;
 use ndarray::{Array1, Array3};
-use ndarray_npy::NpzWriter;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
 use std::ops::Range;
 use std::path::Path;
@@ -225,33 +226,25 @@ pub fn write_timeline_csv(path: &Path, t: &TransientRecord) -> Result<()> {
 
 /// Writes `frames.npz` to `path` (see the module documentation).
 pub fn write_frames_npz(path: &Path, grid: &Grid, t: &TransientRecord) -> Result<()> {
-    let err = |e: &dyn std::fmt::Display| super::io_err(path, e);
     let frames = &t.frames;
     let (k, n) = (frames.len(), grid.len());
-    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
-    let mut npz = NpzWriter::new(std::io::BufWriter::new(file));
+    let mut npz = Npz::create(path)?;
     let per_frame = |f: fn(&Frame) -> f64| Array1::from_iter(frames.iter().map(f));
-    npz.add_array("time_s", &per_frame(|f| f.time_s))
-        .map_err(|e| err(&e))?;
-    npz.add_array("x_p_m", &per_frame(|f| f.x_p_m))
-        .map_err(|e| err(&e))?;
-    npz.add_array(
+    npz.add("time_s", &per_frame(|f| f.time_s))?;
+    npz.add("x_p_m", &per_frame(|f| f.x_p_m))?;
+    npz.add(
         "step",
         &Array1::from_iter(frames.iter().map(|f| f.step as i64)),
-    )
-    .map_err(|e| err(&e))?;
-    npz.add_array("x", &Array1::from(grid.xs()))
-        .map_err(|e| err(&e))?;
-    npz.add_array("y", &Array1::from(grid.ys()))
-        .map_err(|e| err(&e))?;
-    let fields: [(&str, fn(&Frame) -> &[f64]); 2] =
-        [("pressure", |f| &f.pressure), ("film", |f| &f.film)];
+    )?;
+    npz.add_grid(grid)?;
+    type FieldOf = fn(&Frame) -> &[f64];
+    let fields: [(&str, FieldOf); 2] = [("pressure", |f| &f.pressure), ("film", |f| &f.film)];
     for (name, get) in fields {
         let mut v = Vec::with_capacity(k * n);
         for f in frames {
             let a = get(f);
             if a.len() != n {
-                return Err(err(&format!(
+                return Err(npz.err(format!(
                     "frame of step {}: field `{name}` has {} values, the grid needs {n}",
                     f.step,
                     a.len()
@@ -260,14 +253,10 @@ pub fn write_frames_npz(path: &Path, grid: &Grid, t: &TransientRecord) -> Result
             v.extend_from_slice(a);
         }
         let a = Array3::from_shape_vec((k, grid.ny, grid.nx), v)
-            .map_err(|e| err(&format!("field `{name}`: {e}")))?;
-        npz.add_array(name, &a).map_err(|e| err(&e))?;
+            .map_err(|e| npz.err(format!("field `{name}`: {e}")))?;
+        npz.add(name, &a)?;
     }
-    let w = npz.finish().map_err(|e| err(&e))?;
-    w.into_inner()
-        .map_err(|e| err(&e.error().to_string()))?
-        .sync_all()
-        .map_err(|e| err(&e))
+    npz.finish()
 }
 
 // ---------------------------------------------------------------- VTK series
@@ -321,11 +310,7 @@ pub fn write_vtk_series(dir: &Path, grid: &Grid, t: &TransientRecord) -> Result<
 /// The sub-folder name of a snapshot at `x_p_m` (m): `xp_<x_p in mm, 3 decimals>mm`, e.g.
 /// `xp_-0.780mm`, `xp_0.000mm`, `xp_0.560mm`.
 pub fn snapshot_folder_name(x_p_m: f64) -> String {
-    let mut s = format!("{:.3}", x_p_m * 1e3);
-    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-        s.remove(0);
-    }
-    format!("xp_{s}mm")
+    format!("xp_{}mm", fmt_fixed(x_p_m * 1e3, 3))
 }
 
 /// The timeline row of `step`, if any.
@@ -380,8 +365,8 @@ pub fn snapshot_solution(
             summary.min_film_at_m = Some([g.x(k % g.nx), g.y(k / g.nx)]);
         }
         let centre = g.idx(
-            nearest(g.nx, |i| g.x(i), 0.0),
-            nearest(g.ny, |j| g.y(j), 0.0),
+            super::nearest(g.nx, |i| g.x(i), 0.0),
+            super::nearest(g.ny, |j| g.y(j), 0.0),
         );
         summary.central_film_m = row
             .map(|r| r.central_film_m)
@@ -455,16 +440,6 @@ pub fn write_snapshots(dir: &Path, case: &Case, solution: &Solution) -> Result<(
 }
 
 // ---------------------------------------------------------------- shared helpers
-
-fn nearest(n: usize, coord: impl Fn(usize) -> f64, target: f64) -> usize {
-    (0..n)
-        .min_by(|&a, &b| {
-            (coord(a) - target)
-                .abs()
-                .total_cmp(&(coord(b) - target).abs())
-        })
-        .unwrap_or(0)
-}
 
 /// [`fmt_sig`], with 0 written `0`.
 fn fmt_sig_or_zero(v: f64, sig: usize) -> String {
@@ -553,25 +528,6 @@ struct Panel {
     y_label: String,
     range: Range<f64>,
     lines: Vec<Line>,
-}
-
-/// Renders a picture of `size` into `path` (a PNG), with the embedded font; the error names
-/// the file.
-fn render_png(
-    path: &Path,
-    size: (u32, u32),
-    f: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> DrawResult<()>,
-) -> Result<()> {
-    ensure_font().map_err(|e| draw_err(path, e))?;
-    let root = BitMapBackend::new(path, size).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| draw_err(path, e))?;
-    f(&root).map_err(|e| draw_err(path, e))?;
-    root.present().map_err(|e| draw_err(path, e))?;
-    drop(root);
-    match std::fs::metadata(path) {
-        Ok(m) if m.len() > 0 => Ok(()),
-        _ => Err(draw_err(path, "no picture was written")),
-    }
 }
 
 /// Splits a polyline at its non-finite points.
@@ -714,7 +670,7 @@ pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Resu
     };
     let lines = timeline_lines(case, t, &axis, &bad);
     let height = 120 + 24 * lines.len() as u32 + 270 * panels.len() as u32;
-    render_png(path, (TIMELINE_WIDTH, height), |root| {
+    render_sized(path, (TIMELINE_WIDTH, height), |root| {
         let area = titled(root, &case.title, &lines)?;
         let (_, h) = area.dim_in_pixel();
         let n = panels.len();
@@ -913,24 +869,16 @@ fn draw_panel(
             });
     }
     if all.is_empty() {
-        let plot = chart.plotting_area().strip_coord_spec();
-        let (pw, ph) = plot.dim_in_pixel();
-        plot.draw_text(
-            "no value to draw",
-            &text_style(18.0, GREY).pos(Pos::new(HPos::Center, VPos::Center)),
-            (pw as i32 / 2, ph as i32 / 2),
-        )?;
+        say_in_middle(&chart, "no value to draw", 18.0)?;
     }
-    chart
-        .configure_series_labels()
-        .position(legend_corner(&all, (xr.start, xr.end), (yr.start, yr.end)))
-        .margin(10)
-        .legend_area_size(36)
-        .label_font(text_style(16.0, BLACK))
-        .background_style(ShapeStyle::from(&WHITE.mix(0.9)).filled())
-        .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
-        .draw()?;
-    Ok(())
+    draw_legend(
+        chart.configure_series_labels(),
+        legend_corner(&all, (xr.start, xr.end), (yr.start, yr.end)),
+        LegendLook {
+            margin: 10,
+            ..LEGEND
+        },
+    )
 }
 
 // ---------------------------------------------------------------- passage.gif
@@ -971,7 +919,7 @@ struct Passage<'a> {
 impl<'a> Passage<'a> {
     fn new(case: &'a Case, grid: &'a Grid, t: &'a TransientRecord, shown: &[usize]) -> Self {
         let g = grid;
-        let j = nearest(g.ny, |j| g.y(j), 0.0);
+        let j = super::nearest(g.ny, |j| g.y(j), 0.0);
         let mut p_top: f64 = 0.0;
         let mut loaded: f64 = f64::NEG_INFINITY;
         let mut finite = vec![];
@@ -1063,11 +1011,7 @@ impl<'a> Passage<'a> {
         let (aw, _) = area.dim_in_pixel();
         let (main, bar) = area.split_horizontally(aw - GIF_RIGHT);
         let mm = 1e3;
-        let xr = drawable(g.x_min * mm..g.x_max() * mm);
-        let yr = drawable(g.y_min * mm..g.y_max() * mm);
-        let (xspan, yspan) = (xr.end - xr.start, yr.end - yr.start);
-        let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
-        let y_fmt = move |v: &f64| fmt_tick(*v, yspan);
+        let (xr, yr) = map_ranges(g);
         let mut chart = ChartBuilder::on(&main)
             .margin_left(GIF_LEFT_MARGIN)
             .margin_right(10)
@@ -1076,39 +1020,9 @@ impl<'a> Passage<'a> {
             .x_label_area_size(30)
             .y_label_area_size(GIF_Y_LABELS)
             .build_cartesian_2d(xr.clone(), yr.clone())?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_labels(9)
-            .y_labels(5)
-            .x_label_formatter(&x_fmt)
-            .y_label_formatter(&y_fmt)
-            .label_style(text_style(14.0, BLACK))
-            .axis_desc_style(text_style(15.0, BLACK))
-            .y_desc(y_axis_label(self.case))
-            .draw()?;
-        let plot = chart.plotting_area().strip_coord_spec();
-        let (w, h) = plot.dim_in_pixel();
-        let sampler = Sampler { g, v: &f.pressure };
+        draw_map_axes(&mut chart, 5, GIF_FONTS, None, y_axis_label(self.case))?;
         let hi = drawable(0.0..self.p_top).end;
-        for py in 0..h {
-            let y = (yr.end - (py as f64 + 0.5) / h as f64 * yspan) / mm;
-            for px in 0..w {
-                let x = (xr.start + (px as f64 + 0.5) / w as f64 * xspan) / mm;
-                let v = sampler.at(x, y);
-                let c = if v.is_finite() {
-                    let (r, gg, b) = ColorMap::Inferno.color(v * 1e-9 / hi);
-                    RGBColor(r, gg, b)
-                } else {
-                    RGBColor(190, 190, 190)
-                };
-                plot.draw_pixel((px as i32, py as i32), &c)?;
-            }
-        }
-        plot.draw(&Rectangle::new(
-            [(0, 0), (w as i32 - 1, h as i32 - 1)],
-            ShapeStyle::from(&BLACK).stroke_width(1),
-        ))?;
+        paint_map(&chart, g, &f.pressure, 1e-9, 0.0..hi, ColorMap::Inferno)?;
         // x_p: a dashed white line across the map
         let xp = f.x_p_m * mm;
         if xp >= xr.start && xp <= xr.end {
@@ -1120,8 +1034,6 @@ impl<'a> Passage<'a> {
             ))?;
         }
         // the colour bar, aligned with the map
-        let span = hi;
-        let fmt = move |v: &f64| fmt_tick(*v, span);
         let mut cb = ChartBuilder::on(&bar)
             .margin_top(4)
             .margin_bottom(4)
@@ -1130,30 +1042,14 @@ impl<'a> Passage<'a> {
             .x_label_area_size(30)
             .right_y_label_area_size(GIF_RIGHT as i32 - 10 - 4 - 26)
             .build_cartesian_2d(0.0..1.0, 0.0..hi)?;
-        cb.configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_labels(6)
-            .y_label_formatter(&fmt)
-            .label_style(text_style(14.0, BLACK))
-            .axis_desc_style(text_style(15.0, BLACK))
-            .y_desc("pressure (GPa)")
-            .draw()?;
-        let plot = cb.plotting_area().strip_coord_spec();
-        let (w, h) = plot.dim_in_pixel();
-        for py in 0..h {
-            let t = 1.0 - (py as f64 + 0.5) / h as f64;
-            let (r, gg, b) = ColorMap::Inferno.color(t);
-            plot.draw(&PathElement::new(
-                vec![(0, py as i32), (w as i32 - 1, py as i32)],
-                ShapeStyle::from(&RGBColor(r, gg, b)).stroke_width(1),
-            ))?;
-        }
-        plot.draw(&Rectangle::new(
-            [(0, 0), (w as i32 - 1, h as i32 - 1)],
-            ShapeStyle::from(&BLACK).stroke_width(1),
-        ))?;
-        Ok(())
+        draw_colorbar_on(
+            &mut cb,
+            ColorMap::Inferno,
+            6,
+            GIF_FONTS,
+            None,
+            "pressure (GPa)",
+        )
     }
 
     fn draw_profile(&self, area: &DrawingArea<BitMapBackend, Shift>, f: &Frame) -> DrawResult<()> {
@@ -1162,10 +1058,9 @@ impl<'a> Passage<'a> {
         let xr = drawable(g.x_min * 1e3..g.x_max() * 1e3);
         let pr = drawable(0.0..self.p_top * 1.12);
         let hr = drawable(0.0..self.h_top);
-        let (xspan, pspan, hspan) = (xr.end - xr.start, pr.end - pr.start, hr.end - hr.start);
+        let (xspan, pspan) = (xr.end - xr.start, pr.end - pr.start);
         let x_fmt = move |v: &f64| fmt_tick(*v, xspan);
         let p_fmt = move |v: &f64| fmt_tick(*v, pspan);
-        let h_fmt = move |v: &f64| fmt_tick(*v, hspan);
         let mut chart = ChartBuilder::on(area)
             .margin_left(GIF_LEFT_MARGIN)
             .margin_right(10)
@@ -1195,14 +1090,7 @@ impl<'a> Passage<'a> {
             .draw()?;
         let word = film_word(self.case);
         let h_desc = format!("{word} ({})", self.h_unit);
-        chart
-            .configure_secondary_axes()
-            .y_labels(6)
-            .y_label_formatter(&h_fmt)
-            .label_style(text_style(14.0, FILM_COLOR))
-            .axis_desc_style(text_style(15.0, FILM_COLOR))
-            .y_desc(h_desc.as_str())
-            .draw()?;
+        draw_right_axis(&mut chart, &hr, 6, GIF_FONTS, h_desc.as_str())?;
         let xs = g.xs();
         let row = j * g.nx..(j + 1) * g.nx;
         let p: Vec<(f64, f64)> = xs
@@ -1249,16 +1137,11 @@ impl<'a> Passage<'a> {
                 first = false;
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .margin(8)
-            .legend_area_size(30)
-            .label_font(text_style(14.0, BLACK))
-            .background_style(ShapeStyle::from(&WHITE.mix(0.85)).filled())
-            .border_style(ShapeStyle::from(&RGBColor(150, 150, 150)))
-            .draw()?;
-        Ok(())
+        draw_legend(
+            chart.configure_series_labels(),
+            SeriesLabelPosition::UpperRight,
+            GIF_LEGEND,
+        )
     }
 }
 
@@ -1267,16 +1150,18 @@ impl<'a> Passage<'a> {
 const GIF_LEFT_MARGIN: i32 = 6;
 const GIF_Y_LABELS: i32 = 70;
 const GIF_RIGHT: u32 = 110;
-
-/// `v` with `dec` decimals, `-0.000` written `0.000`.
-fn fmt_fixed(v: f64, dec: usize) -> String {
-    let s = format!("{v:.dec$}");
-    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-        s[1..].to_string()
-    } else {
-        s
-    }
-}
+/// The legend of the animation's profile.
+const GIF_LEGEND: LegendLook = LegendLook {
+    font: 14.0,
+    sample: 30,
+    margin: 8,
+    opacity: 0.85,
+};
+/// The fonts of the animation.
+const GIF_FONTS: Fonts = Fonts {
+    label: 14.0,
+    desc: 15.0,
+};
 
 /// Milliseconds a frame of `passage.gif` with `n` frames is shown: about 8 s in all, 40 to 200
 /// ms each.
@@ -1345,5 +1230,5 @@ pub fn write_passage_frame_png(
     }
     let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
     let passage = Passage::new(case, grid, t, &shown);
-    render_png(path, (GIF_WIDTH, GIF_HEIGHT), |root| passage.draw(root, k))
+    render_sized(path, (GIF_WIDTH, GIF_HEIGHT), |root| passage.draw(root, k))
 }
