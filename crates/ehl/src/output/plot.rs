@@ -565,6 +565,62 @@ struct Axis {
 /// Splits a polyline into the pieces inside `range` (in y), with the crossing points added, so
 /// that a clipped curve leaves the frame cleanly.
 pub(super) fn clip(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
+    clip_all(pts, range)
+        .into_iter()
+        .map(|piece| thin(&piece, THIN_BUCKETS))
+        .collect()
+}
+
+/// Buckets along x for [`thin`]: about one per two pixels of the widest line chart.
+const THIN_BUCKETS: usize = 150;
+
+/// A polyline with more than two points per bucket of its x extent (`buckets` buckets) reduced
+/// to the lowest and the highest point of each bucket, in x order: thick lines drawn through
+/// several points per pixel come out ragged in the bitmap backend, while the envelope keeps
+/// every spike. Shorter lines, and lines whose x does not increase, are returned unchanged.
+pub(super) fn thin(pts: &[(f64, f64)], buckets: usize) -> Vec<(f64, f64)> {
+    if pts.len() <= 2 * buckets || pts.windows(2).any(|w| !(w[1].0 >= w[0].0)) {
+        return pts.to_vec();
+    }
+    let (x0, x1) = (pts[0].0, pts[pts.len() - 1].0);
+    let span = x1 - x0;
+    if !(span > 0.0) {
+        return pts.to_vec();
+    }
+    let bucket = |x: f64| (((x - x0) / span * buckets as f64) as usize).min(buckets - 1);
+    let mut out = Vec::with_capacity(2 * buckets + 2);
+    let mut k = 0;
+    while k < pts.len() {
+        let b = bucket(pts[k].0);
+        let (mut lo, mut hi) = (k, k);
+        let mut e = k;
+        while e < pts.len() && bucket(pts[e].0) == b {
+            if pts[e].1 < pts[lo].1 {
+                lo = e;
+            }
+            if pts[e].1 > pts[hi].1 {
+                hi = e;
+            }
+            e += 1;
+        }
+        let (a, c) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+        out.push(pts[a]);
+        if c != a {
+            out.push(pts[c]);
+        }
+        k = e;
+    }
+    // keep the ends exact
+    if out.last() != pts.last() {
+        out.push(pts[pts.len() - 1]);
+    }
+    if out.first() != pts.first() {
+        out.insert(0, pts[0]);
+    }
+    out
+}
+
+fn clip_all(pts: &[(f64, f64)], range: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
     let inside = |y: f64| y.is_finite() && y >= range.start && y <= range.end;
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut cur: Vec<(f64, f64)> = Vec::new();
@@ -1391,6 +1447,24 @@ mod tests {
             }
             Ok(())
         });
+    }
+
+    #[test]
+    fn thin_keeps_short_lines_and_the_envelope_of_long_ones() {
+        let short: Vec<(f64, f64)> = (0..10).map(|i| (i as f64, (i % 3) as f64)).collect();
+        assert_eq!(thin(&short, 450), short);
+        // 4000 points, a spike at one point: kept, and at most 2 points per bucket plus ends
+        let long: Vec<(f64, f64)> = (0..4000)
+            .map(|i| (i as f64, if i == 1234 { 10.0 } else { (i as f64 * 0.01).sin() }))
+            .collect();
+        let t = thin(&long, 450);
+        assert!(t.len() <= 2 * 450 + 2, "{}", t.len());
+        assert!(t.contains(&(1234.0, 10.0)));
+        assert_eq!(t[0], long[0]);
+        assert_eq!(t[t.len() - 1], long[3999]);
+        assert!(t.windows(2).all(|w| w[1].0 > w[0].0));
+        let lo = t.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        assert!((lo + 1.0).abs() < 1e-3);
     }
 
     #[test]
