@@ -17,11 +17,13 @@
 //! | elastic kernel (Love 1929 rectangle coefficients), DC-FFT operator, mirror images + psi | [`elastic`] |
 //! | dry contact solver (constrained conjugate gradient) | [`dry`] |
 //! | density, viscosity and rheology laws | [`lubricant`] |
-//! | discrete Reynolds equation and its solvers | [`reynolds`] |
-//! | EHL coupling: film, load balance, drivers | [`ehl`] |
+//! | discrete Reynolds equation: Poiseuille, wedge and squeeze terms, cavitation, mass flows | [`reynolds`] |
+//! | generic linear algebra: GMRES, banded and dense LU, line multigrid | [`linalg`] |
+//! | EHL coupling: film, load balance, steady and transient (time loop, BDF2) drivers | [`ehl`] |
 //! | shear stress and friction integral | [`friction`] |
 //! | surface features (pits, dents, waviness, height maps) as cell averages | [`surface`] |
 //! | analytic and classical reference results | [`reference`](mod@reference) |
+//! | from a case to a solution (steady or transient), no I/O | [`run`] |
 //! | writers | [`output`] |
 //!
 //! Conventions (written once here): SI units everywhere in the public API (m, Pa, N, s, Pa s,
@@ -40,6 +42,7 @@ pub mod error;
 pub mod friction;
 pub mod geometry;
 pub mod grid;
+pub mod linalg;
 pub mod lubricant;
 pub mod output;
 pub mod reference;

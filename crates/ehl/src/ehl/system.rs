@@ -20,7 +20,7 @@
 //! dimensionless kernel coefficient), differenced with the Couette upwind rule, identity rows on
 //! the active set; plus the Poiseuille coupling of each cell to the cells above and below it
 //! (the y faces). This local operator is solved approximately by one V-cycle of line-relaxation
-//! aggregation multigrid ([`crate::reynolds::multigrid`]), whose coarse grids act only on the
+//! aggregation multigrid ([`crate::linalg::multigrid`]), whose coarse grids act only on the
 //! Poiseuille-dominated cells (see [`COARSE_POISEUILLE_SHARE`]); on a line contact it is one
 //! banded LU. H0 enters through a Schur complement on the bordered load row.
 //!
@@ -38,9 +38,9 @@ use crate::elastic::operator::min_len;
 use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
+use crate::linalg::dense::DenseLu;
+use crate::linalg::multigrid::{LineMultigrid, LineOperator};
 use crate::lubricant::{density, viscosity};
-use crate::reynolds::dense::DenseLu;
-use crate::reynolds::multigrid::{LineMultigrid, LineOperator};
 use crate::reynolds::residual::{self, Fields, ReynoldsGrid};
 use rayon::prelude::*;
 
@@ -845,7 +845,7 @@ impl Preconditioner {
 }
 
 /// The exact Jacobian of a line contact (ny == 1), bordered with the H0 column and the load
-/// row, LU-factored ([`crate::reynolds::dense`]): M = [[J_P, dR/dH0], [s_L dX, 0]] with J_P
+/// row, LU-factored ([`crate::linalg::dense`]): M = [[J_P, dR/dH0], [s_L dX, 0]] with J_P
 /// from [`assemble_line`] with the elastic coupling over the whole line. On an infinite line
 /// the influence coefficients decay only logarithmically, so a banded approximation leaves
 /// the far coupling to GMRES (a transient step of 1024 cells needed ~75 GMRES iterations per

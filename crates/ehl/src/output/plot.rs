@@ -1455,7 +1455,16 @@ mod tests {
         assert_eq!(thin(&short, 450), short);
         // 4000 points, a spike at one point: kept, and at most 2 points per bucket plus ends
         let long: Vec<(f64, f64)> = (0..4000)
-            .map(|i| (i as f64, if i == 1234 { 10.0 } else { (i as f64 * 0.01).sin() }))
+            .map(|i| {
+                (
+                    i as f64,
+                    if i == 1234 {
+                        10.0
+                    } else {
+                        (i as f64 * 0.01).sin()
+                    },
+                )
+            })
             .collect();
         let t = thin(&long, 450);
         assert!(t.len() <= 2 * 450 + 2, "{}", t.len());

@@ -482,8 +482,8 @@ mod tests {
                 f
             };
             let mut x = vec![0.0; b.len()];
-            let out = crate::reynolds::gmres::gmres(
-                &mut crate::reynolds::gmres::GmresWork::default(),
+            let out = crate::linalg::gmres::gmres(
+                &mut crate::linalg::gmres::GmresWork::default(),
                 &b,
                 &mut x,
                 60,

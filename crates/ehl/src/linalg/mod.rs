@@ -1,0 +1,17 @@
+//! Generic linear algebra of the solvers, free of physics: nothing here knows the Reynolds
+//! equation, the elastic kernel or the case file.
+//!
+//! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
+//! * [`dense`]: dense blocked LU with partial pivoting (the preconditioner of a transient
+//!   infinite line contact, reused over time steps);
+//! * [`multigrid`]: line-relaxation aggregation multigrid for a local line operator (the Newton
+//!   preconditioner on 2D grids);
+//! * [`gmres`]: restarted, flexible, right-preconditioned GMRES (the Newton steps).
+//!
+//! The discrete Reynolds operator that these solve is [`crate::reynolds`]; the EHL
+//! Newton-Krylov solver that couples them to the elastic operator is [`crate::ehl`].
+
+pub mod banded;
+pub mod dense;
+pub mod gmres;
+pub mod multigrid;
