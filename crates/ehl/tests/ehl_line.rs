@@ -211,3 +211,54 @@ fn grid_convergence() {
     assert!(dc2 < 0.01 && dm2 < 0.01);
     assert!(dc2 <= dc1 + 1e-3 && dm2 <= dm1 + 1e-3);
 }
+
+/// The observer of a steady solve sees every Newton iterate: the last one is the converged
+/// state (residual and load error within the tolerance, its step count the result's), the
+/// counts never decrease, and the typed termination agrees with the words of the summary.
+#[test]
+fn observer_sees_the_newton_history_and_the_typed_termination() {
+    let c = line_case(
+        20.0,
+        10.0,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    );
+    let grid = Grid::new(256, 1, -4.5 * c.b, 1.5 * c.b, -0.5, 0.5);
+    let r = c.r;
+    let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
+    let e = c.e;
+    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
+    let prob = EhlProblem {
+        grid,
+        gap: &gap,
+        operator: &op,
+        load: c.w,
+        lubricant: &c.lub,
+        entrainment_speed: c.ue,
+        reduced_radius: c.r,
+        reduced_modulus: c.e,
+        hertz_half_width: c.b,
+        hertz_pressure: c.ph,
+        initial_pressure: None,
+    };
+    let par = EhlParams::default();
+    let mut seen: Vec<ehl::ehl::NewtonIterate> = Vec::new();
+    let res = ehl::ehl::solve_steady_observed(&prob, &par, &mut |it| seen.push(*it));
+    assert!(res.converged, "{}", res.termination);
+    assert_eq!(res.reason, ehl::ehl::Termination::Converged);
+    assert_eq!(res.termination, res.reason.to_string());
+    assert!(
+        seen.len() > res.iterations,
+        "{} iterates, {} Newton steps",
+        seen.len(),
+        res.iterations
+    );
+    let last = seen.last().unwrap();
+    assert!(last.residual <= par.tolerance && last.load_error.abs() <= par.tolerance);
+    assert_eq!(last.newton_steps, res.iterations);
+    assert_eq!(last.cells, 256);
+    assert!(seen
+        .windows(2)
+        .all(|w| w[1].newton_steps >= w[0].newton_steps
+            && w[1].linear_iterations >= w[0].linear_iterations));
+}

@@ -35,8 +35,8 @@ use crate::case::Lubricant;
 use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
+use crate::linalg::gmres::{gmres, norm, GmresOutcome, GmresWork};
 use crate::reference::film;
-use crate::reynolds::gmres::{gmres, norm, GmresOutcome, GmresWork};
 use crate::reynolds::residual;
 use system::{
     jacobian_product, DensePreconditioner, Linear, Physics, Preconditioner, State, System,
@@ -141,7 +141,10 @@ pub struct EhlResult {
     /// (sum p dA - load) / load
     pub load_error: f64,
     pub converged: bool,
+    /// why the solve stopped, in words (`reason.to_string()`)
     pub termination: String,
+    /// why the solve stopped
+    pub reason: Termination,
     /// mass flows (kg/s; per metre of length for a line contact): through the inlet; through
     /// the outlet and into the cavitated zone; out through the free y-edges
     pub inflow: f64,
@@ -150,12 +153,14 @@ pub struct EhlResult {
 }
 
 #[derive(Default)]
-struct Stats {
+struct Stats<'a> {
     newton: usize,
     gmres: usize,
     stages: usize,
     /// operator applications on coarser grids (grid sequencing)
     applies: usize,
+    /// told of every evaluated Newton iterate
+    observer: Option<NewtonObserver<'a>>,
 }
 
 /// Loosest relative tolerance of a Newton step's linear solve (the Eisenstat-Walker forcing
@@ -165,10 +170,102 @@ struct Stats {
 /// 121 instead of 138 GMRES iterations on the finest grid (single runs: 2.9 s against 3.3-3.6 s).
 const ETA_MAX: f64 = 0.1;
 
+/// Why a Newton run (or a whole steady solve) stopped. `Display` gives the sentence written to
+/// `summary.json`'s `termination`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Termination {
+    /// relative residual and load error both within the tolerance
+    Converged,
+    /// a state with NaN or infinity (never returned as the solution: the best state is)
+    NonFiniteState,
+    /// the Newton step limit (`EhlParams::max_iterations`) was reached
+    MaxIterations(usize),
+    /// the line preconditioner could not be factored
+    SingularPreconditioner,
+    /// ||R|| fell by less than 0.1 % over the last 8 Newton steps
+    Stalled { step: usize, merit: f64 },
+    /// plain Newton: no step length along the Newton direction reduced ||R||
+    LineSearchFailed { step: usize },
+    /// pseudo-transient continuation: no descent even with a small pseudo-time step
+    NoDescent { step: usize },
+    /// plain Newton failed, then pseudo-transient continuation from the same start
+    NewtonThenPseudoTransient {
+        newton: Box<Termination>,
+        pseudo_transient: Box<Termination>,
+    },
+    /// the direct attempt failed and continuation in alpha stalled at `fraction` of alpha
+    ContinuationStalled {
+        first: Box<Termination>,
+        fraction: f64,
+        last: Box<Termination>,
+    },
+}
+
+impl Termination {
+    pub fn is_converged(&self) -> bool {
+        matches!(self, Termination::Converged)
+    }
+}
+
+impl std::fmt::Display for Termination {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Termination::Converged => write!(f, "converged"),
+            Termination::NonFiniteState => write!(f, "non-finite state"),
+            Termination::MaxIterations(n) => write!(f, "no convergence in {n} Newton steps"),
+            Termination::SingularPreconditioner => write!(f, "singular preconditioner"),
+            Termination::Stalled { step, merit } => write!(
+                f,
+                "stalled at Newton step {step}: ||R|| {merit:.3e} unchanged over 8 steps"
+            ),
+            Termination::LineSearchFailed { step } => {
+                write!(f, "line search failed at Newton step {step}")
+            }
+            Termination::NoDescent { step } => write!(
+                f,
+                "stalled at Newton step {step}: no descent even with a small pseudo-time step"
+            ),
+            Termination::NewtonThenPseudoTransient {
+                newton,
+                pseudo_transient,
+            } => write!(f, "Newton: {newton}; pseudo-transient: {pseudo_transient}"),
+            Termination::ContinuationStalled {
+                first,
+                fraction,
+                last,
+            } => write!(
+                f,
+                "{first}; continuation in alpha stalled at {fraction:.3} alpha: {last}"
+            ),
+        }
+    }
+}
+
+/// One Newton iterate, as an observer of the solve sees it (after each evaluation of a new
+/// state): for progress bars and residual histories.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonIterate {
+    /// Newton steps taken so far in this solve (all stages and grids)
+    pub newton_steps: usize,
+    /// GMRES iterations so far in this solve
+    pub linear_iterations: usize,
+    /// relative residual of the state (see [`EhlResult::residual`])
+    pub residual: f64,
+    /// (sum p dA - load) / load
+    pub load_error: f64,
+    /// cells of the grid this iterate lives on (grid sequencing solves coarser grids first)
+    pub cells: usize,
+    /// the tolerance this stage is solved to
+    pub tolerance: f64,
+}
+
+/// An observer of the Newton iterates ([`solve_steady_observed`]).
+pub type NewtonObserver<'a> = &'a mut (dyn FnMut(&NewtonIterate) + Send);
+
 /// Outcome of one Newton run: converged, reason, relative residual, load error.
 struct StageEnd {
     converged: bool,
-    reason: String,
+    reason: Termination,
     residual: f64,
     load_error: f64,
 }
@@ -218,7 +315,7 @@ fn newton(
     let end = loop {
         if fresh {
             if !st.is_finite() {
-                break (false, String::from("non-finite state"));
+                break (false, Termination::NonFiniteState);
             }
             sys.scaling(st, &mut c, Some(&mut share));
             sys.merit_vector(st, &c, &mut r, &mut set);
@@ -234,8 +331,18 @@ fn newton(
                     None => best = Some((score, st.clone())),
                 }
             }
+            if let Some(o) = stats.observer.as_mut() {
+                o(&NewtonIterate {
+                    newton_steps: stats.newton,
+                    linear_iterations: stats.gmres,
+                    residual: res,
+                    load_error: lerr,
+                    cells: n,
+                    tolerance: tol,
+                });
+            }
             if res <= tol && lerr.abs() <= tol {
-                break (true, String::from("converged"));
+                break (true, Termination::Converged);
             }
             merit = norm(&r);
             if let Some(pm) = prev_merit {
@@ -264,10 +371,7 @@ fn newton(
             }
         }
         if it >= par.max_iterations {
-            break (
-                false,
-                format!("no convergence in {} Newton steps", par.max_iterations),
-            );
+            break (false, Termination::MaxIterations(par.max_iterations));
         }
         let shift = if dtau.is_finite() && dtau < 1e12 {
             1.0 / dtau
@@ -288,7 +392,7 @@ fn newton(
                 let Some(pc) =
                     Preconditioner::new(sys, st, &c, &set, &share, &bcol, shift, spare_pc.take())
                 else {
-                    break (false, String::from("singular preconditioner"));
+                    break (false, Termination::SingularPreconditioner);
                 };
                 let st_ref: &State = st;
                 let out = gmres(
@@ -335,21 +439,18 @@ fn newton(
         // stalled: ||R|| has not fallen by 0.1 % over the last 8 steps
         recent.push(merit);
         if recent.len() > 8 && merit > 0.999 * recent[recent.len() - 9] {
-            break (
-                false,
-                format!("stalled at Newton step {it}: ||R|| {merit:.3e} unchanged over 8 steps"),
-            );
+            break (false, Termination::Stalled { step: it, merit });
         }
         if accepted {
             std::mem::swap(st, &mut trial);
             fresh = true;
         } else if shift == 0.0 {
-            break (false, format!("line search failed at Newton step {it}"));
+            break (false, Termination::LineSearchFailed { step: it });
         } else {
             dtau *= 0.25;
             fresh = false;
             if dtau < 1e-8 {
-                break (false, format!("stalled at Newton step {it}: no descent even with a small pseudo-time step"));
+                break (false, Termination::NoDescent { step: it });
             }
         }
     };
@@ -476,17 +577,15 @@ fn solve_from(
     }
     let mut st2 = start;
     let e2 = newton(sys, &mut st2, tol, par.pseudo_time_step, par, stats);
+    let reason = Termination::NewtonThenPseudoTransient {
+        newton: Box::new(e.reason.clone()),
+        pseudo_transient: Box::new(e2.reason.clone()),
+    };
     if e2.converged || e2.residual < e.residual {
         *st = st2;
-        StageEnd {
-            reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason),
-            ..e2
-        }
+        StageEnd { reason, ..e2 }
     } else {
-        StageEnd {
-            reason: format!("Newton: {}; pseudo-transient: {}", e.reason, e2.reason),
-            ..e
-        }
+        StageEnd { reason, ..e }
     }
 }
 
@@ -584,12 +683,25 @@ fn start(problem: &EhlProblem, sys: &mut System, init: Option<&[f64]>, alpha: f6
 /// continuation) or does not reach the tolerance within `max_iterations` steps, the best
 /// state seen is returned with `converged == false` and the reason in `termination`.
 pub fn solve_steady(problem: &EhlProblem, params: &EhlParams) -> EhlResult {
+    solve_steady_observed(problem, params, &mut |_| {})
+}
+
+/// [`solve_steady`], telling `observer` of every Newton iterate (all grids and stages): for a
+/// progress bar or a residual history.
+pub fn solve_steady_observed(
+    problem: &EhlProblem,
+    params: &EhlParams,
+    observer: NewtonObserver,
+) -> EhlResult {
     // run the whole solve on a rayon worker: the many small parallel loops of a Newton step then
     // start by work stealing, not by injecting a job from outside the pool and putting the
     // calling thread to sleep until it is done (256 x 512 roller, means of 5 runs: system time
     // 1.4 -> 0.9 s, wall 3.8 -> 3.4 s)
     rayon::scope(|_| {
-        let mut stats = Stats::default();
+        let mut stats = Stats {
+            observer: Some(observer),
+            ..Stats::default()
+        };
         let (mut sys, st, end) = solve_grid(
             problem,
             problem.grid,
@@ -615,19 +727,30 @@ pub fn solve_steady_with_fallback(
     params: &EhlParams,
     on_second: &dyn Fn(),
 ) -> EhlResult {
+    solve_steady_with_fallback_observed(problem, params, on_second, &mut |_| {})
+}
+
+/// [`solve_steady_with_fallback`], telling `observer` of every Newton iterate of both starts.
+pub fn solve_steady_with_fallback_observed(
+    problem: &EhlProblem,
+    params: &EhlParams,
+    on_second: &dyn Fn(),
+    observer: NewtonObserver,
+) -> EhlResult {
     let dry = problem.initial_pressure;
     let order = if problem.grid.ny == 1 {
         [None, dry]
     } else {
         [dry, None]
     };
-    let with = |start: Option<&[f64]>| {
-        solve_steady(
+    let mut with = |start: Option<&[f64]>| {
+        solve_steady_observed(
             &EhlProblem {
                 initial_pressure: start,
                 ..*problem
             },
             params,
+            &mut *observer,
         )
     };
     let first = with(order[0]);
@@ -861,10 +984,11 @@ fn solve_direct(
                 step *= 0.5;
                 if step < 1.0 / 64.0 {
                     end = StageEnd {
-                        reason: format!(
-                            "{first_reason}; continuation in alpha stalled at {:.3} alpha: {}",
-                            done, e.reason
-                        ),
+                        reason: Termination::ContinuationStalled {
+                            first: Box::new(first_reason.clone()),
+                            fraction: done,
+                            last: Box::new(e.reason.clone()),
+                        },
                         ..e
                     };
                     // the best full-alpha state is the direct attempt's
@@ -927,7 +1051,8 @@ fn finish(
         residual: fin(end.residual),
         load_error: fin(end.load_error),
         converged: end.converged,
-        termination: end.reason,
+        termination: end.reason.to_string(),
+        reason: end.reason,
         inflow: 0.0,
         outflow: 0.0,
         side_leakage: 0.0,

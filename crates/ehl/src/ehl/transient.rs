@@ -357,7 +357,7 @@ fn run(
                 .collect(),
             h0: st.h0 * hs,
             converged: end.converged,
-            termination: end.reason,
+            termination: end.reason.to_string(),
             residual: end.residual,
             load_error: end.load_error,
             newton_iterations: stats.newton,

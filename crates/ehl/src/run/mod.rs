@@ -653,7 +653,28 @@ fn solve_ehl(
         ..EhlParams::default()
     };
     let dry_start = dry.converged.then_some(dry.pressure.as_slice());
-    let r = crate::ehl::solve_steady_with_fallback(
+    // the progress bar follows the Newton residual on a log scale from the first iterate of
+    // each start down to the tolerance
+    // (never backwards: a finer grid of the sequence starts at a higher residual)
+    let mut first: Option<f64> = None;
+    let mut shown = 0.0f64;
+    let mut observer = |it: &crate::ehl::NewtonIterate| {
+        let r0 = *first.get_or_insert(it.residual.max(it.tolerance * 10.0));
+        let done = if it.residual > 0.0 && r0 > it.tolerance {
+            ((r0 / it.residual).ln() / (r0 / it.tolerance).ln()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        shown = shown.max(done);
+        progress.report(
+            0.1 + 0.85 * shown,
+            &format!(
+                "EHL: Newton step {}, residual {:.1e} (tolerance {:.0e}), {} cells",
+                it.newton_steps, it.residual, it.tolerance, it.cells
+            ),
+        );
+    };
+    let r = crate::ehl::solve_steady_with_fallback_observed(
         &EhlProblem {
             grid,
             gap,
@@ -669,6 +690,7 @@ fn solve_ehl(
         },
         &params,
         &|| progress.report(0.5, "EHL, second start"),
+        &mut observer,
     );
     summary.converged = r.converged;
     summary.termination = r.termination.clone();
