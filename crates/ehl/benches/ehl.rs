@@ -8,7 +8,9 @@
 //!   6 kN, Roelands + Dowson-Higginson, 1 mirror level + psi) through `run::solve` (dry
 //!   contact, then EHL; no output files) on 64 x 128, 128 x 256 and 256 x 512 cells.
 //!
-//! Run: `cargo bench -p ehl --bench ehl`.
+//! * transient runs (see [`transient`]).
+//!
+//! Run: `cargo bench -p ehl --bench ehl` (`-- ehl_transient` for the transient group only).
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use ehl::case::{DensityModel, Lubricant, Rheology, ViscosityModel};
 use ehl::ehl::{solve_steady, EhlParams, EhlProblem};
@@ -120,7 +122,9 @@ fn roller(c: &mut Criterion) {
         let sm = &sol.summary;
         eprintln!(
             "roller {nx} x {ny}: {} Newton {} residual {:.2e}",
-            sm.termination, sm.iterations, sm.residual
+            sm.termination,
+            sm.iterations,
+            sm.residual.unwrap_or(f64::NAN)
         );
         group.bench_with_input(
             BenchmarkId::from_parameter(format!("{nx}x{ny}")),
@@ -131,5 +135,75 @@ fn roller(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, line, ball, roller);
+/// Transient runs through `run::solve` (steady start, time loop, friction per step; no output
+/// files): the thesis ch. 3 single pit made 1 um deep (`examples/ehl_thesis_ch3_single_pit.toml`)
+/// over its first 10 steps on 64^2, 128^2 and 256^2 cells, and the waviness line
+/// (`examples/ehl_transient_line_waviness.toml`), 100 steps on 1024 and 2048 cells. The time
+/// per step is the median over the run (the steady start included).
+fn transient(c: &mut Criterion) {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/");
+    let mut group = c.benchmark_group("ehl_transient");
+    group.sample_size(10);
+    let mut cases = Vec::new();
+    for n in [64usize, 128, 256] {
+        let set = vec![
+            format!("grid.nx={n}"),
+            format!("grid.ny={n}"),
+            "features[0].depth=1e-6".to_string(),
+            format!("motion.travel.steps={}", 150 * n / 256),
+            "output.animation=false".to_string(),
+            "output.snapshots=[]".to_string(),
+        ];
+        cases.push((
+            format!("pit_{n}x{n}"),
+            "ehl_thesis_ch3_single_pit.toml",
+            set,
+            10,
+        ));
+    }
+    for n in [1024usize, 2048] {
+        let set = vec![
+            format!("grid.nx={n}"),
+            "motion.travel.steps=100".to_string(),
+            format!(
+                "motion.travel.duration={}",
+                1.2e-4 * 100.0 / 2000.0 * 2048.0 / n as f64
+            ),
+        ];
+        cases.push((
+            format!("waviness_{n}"),
+            "ehl_transient_line_waviness.toml",
+            set,
+            100,
+        ));
+    }
+    for (name, file, mut set, steps) in cases {
+        if name.starts_with("pit") {
+            // only the first `steps` steps of the travel, at the travel's step length
+            let full: usize = set[3]
+                .trim_start_matches("motion.travel.steps=")
+                .parse()
+                .unwrap();
+            set[3] = format!("motion.travel.steps={steps}");
+            set.push(format!(
+                "motion.travel.to={}",
+                -1.0e-3 + 2.0e-3 * steps as f64 / full as f64
+            ));
+        }
+        let case = ehl::case::load_file(std::path::Path::new(&format!("{dir}{file}")), &set)
+            .expect("example case");
+        let sol = ehl::run::solve(&case, &ehl::run::Silent).expect("solve");
+        let sm = &sol.summary;
+        eprintln!(
+            "{name}: {} ({} Newton in all)",
+            sm.termination, sm.iterations
+        );
+        group.bench_with_input(BenchmarkId::from_parameter(&name), &case, |bch, case| {
+            bch.iter(|| ehl::run::solve(case, &ehl::run::Silent))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, line, ball, roller, transient);
 criterion_main!(benches);
