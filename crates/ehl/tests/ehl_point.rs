@@ -170,6 +170,34 @@ fn ball_against_mourier_simulation() {
     );
 }
 
+/// Grid-converged against grid-converged (issue 9, aside): EHL-FBNS's own refinement of this
+/// case (first-order wedge term; 65^2 / 129^2 / 257^2: h_c 232.9 / 225.8 / 219.9 nm) converges
+/// slowly and extrapolates to about 214-218 nm (216 taken). Ours, second order, on 129^2 and
+/// 257^2, Richardson-extrapolated with the observed order 2 (65^2 / 129^2 / 257^2 give
+/// differences 15.8 and 4.1 nm, ratio 3.9): h_ext = h_257 + (h_257 - h_129) / 3. Tolerance
+/// 2.5 %: the reference's extrapolated range is +-1 %, and ours carries about 1 % (the
+/// difference between order 2 and the observed 1.95). The coarse 129^2 value alone is 4 % low,
+/// outside the tolerance: the test needs the refinement.
+#[test]
+fn ball_grid_converged_against_ehl_fbns_extrapolated() {
+    let lub = fbns_oil(ViscosityModel::Roelands, DensityModel::DowsonHigginson);
+    let hc = |n: usize| {
+        let (res, grid, _a, _p0) = solve_ball(&lub, n, &EhlParams::default());
+        assert!(res.converged, "{n}: {}", res.termination);
+        res.film[centre(&grid)]
+    };
+    let (h1, h2) = (hc(129), hc(257));
+    let ext = h2 + (h2 - h1) / 3.0;
+    println!(
+        "h_c 129^2 {:.1} nm, 257^2 {:.1} nm, extrapolated {:.1} nm (EHL-FBNS ~216)",
+        h1 * 1e9,
+        h2 * 1e9,
+        ext * 1e9
+    );
+    assert!((ext / 216e-9 - 1.0).abs() < 0.025, "extrapolated h_c {ext}");
+    assert!(h2 > h1, "the film thickens with the grid");
+}
+
 /// The 2D scaling check the film of the ball rests on (deflection and gap in H = h R / a^2,
 /// load dX dY sum P = 2 pi / 3, inlet, y-Poiseuille): with the laws of the fit (Barus,
 /// incompressible) the central film of the FBNS ball (M = 63.8, L = 5.79) is within 4 % of
