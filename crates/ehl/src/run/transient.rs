@@ -285,7 +285,7 @@ pub(super) fn solve(
             mass_storage_kg_s: s.mass.storage,
             wall_time_s: s.wall_time,
         });
-        if s.step % ctx.frames_every == 0 || s.step == steps {
+        if s.step.is_multiple_of(ctx.frames_every) || s.step == steps {
             record.frames.push(Frame {
                 step: s.step,
                 time_s: s.time,
