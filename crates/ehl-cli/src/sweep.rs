@@ -309,7 +309,13 @@ fn write_csv(dir: &Path, varies: &[Vary], pts: &[Point]) -> Result<usize> {
 }
 
 /// The figure a study is usually about, with its axis label and scale to display units.
-const PLOT_FIGURES: [(&str, &str, f64); 5] = [
+const PLOT_FIGURES: [(&str, &str, f64); 6] = [
+    // a transient run's friction is read over the whole travel, not at its last step
+    (
+        "friction_coefficient_mean_over_travel",
+        "friction coefficient, mean over the travel (-)",
+        1.0,
+    ),
     ("friction_coefficient", "friction coefficient (-)", 1.0),
     ("central_film_m", "central film thickness (µm)", 1e6),
     ("max_pressure_pa", "maximum pressure (GPa)", 1e-9),
