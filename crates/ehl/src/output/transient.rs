@@ -10,7 +10,7 @@
 //! | `passage.gif` | with `output.animation` and at least two frames: the pressure map (fixed colour scale over all frames) above the centre-line pressure and film, x_p marked, x_p and time in the title; an infinite line contact (`ny == 1`) has the profile only |
 //! | `passage.png` | the kept frame with the highest pressure, drawn as a frame of `passage.gif` (always written) |
 //! | `frames/frame_NNNNN.vtr`, `passage.pvd` | the frames for ParaView: one VTK XML rectilinear grid per frame (`pressure`, `film`; NNNNN the step), and the collection `passage.pvd` that opens them as one time series (`timestep` = time in s) |
-//! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run |
+//! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run, and `pressure_zoom.png`, `film_zoom.png` on a strip of three times features[0]'s y extent when that is less than half the map ([`zoom_window`]) |
 //!
 //! Film cells with no material (`+inf`, beyond the end of the shorter roller) are written as
 //! `inf` in `frames.npz` and the `.vtr` frames, exactly as `fields.npz` and `fields.vtk` write
@@ -53,6 +53,9 @@ pub const PASSAGE_PNG: &str = "passage.png";
 pub const PASSAGE_PVD: &str = "passage.pvd";
 /// The folder of the `.vtr` frames that `passage.pvd` lists.
 pub const FRAMES_DIR: &str = "frames";
+/// Zoomed maps of a snapshot around features[0] (see [`zoom_window`]).
+pub const PRESSURE_ZOOM_PNG: &str = "pressure_zoom.png";
+pub const FILM_ZOOM_PNG: &str = "film_zoom.png";
 /// The folder of the snapshot sub-folders.
 pub const SNAPSHOTS_DIR: &str = "snapshots";
 
@@ -435,8 +438,76 @@ pub fn write_snapshots(dir: &Path, case: &Case, solution: &Solution) -> Result<(
             super::plot::write_film(&sub.join(super::FILM_PNG), &c, &s)?;
         }
         super::plot::write_centerline(&sub.join(super::CENTERLINE_PNG), &c, &s)?;
+        if let Some((y0, y1)) = zoom_window(case, &s.grid) {
+            if let Some(z) = crop_y(&s, y0, y1) {
+                let mut cz = c.clone();
+                cz.title = format!("zoom on features[0] — {}", c.title);
+                super::plot::write_pressure(&sub.join(PRESSURE_ZOOM_PNG), &cz, &z)?;
+                if z.fields.film.is_some() {
+                    super::plot::write_film(&sub.join(FILM_ZOOM_PNG), &cz, &z)?;
+                }
+            }
+        }
     }
     Ok(())
+}
+
+/// The y range (m) of the zoomed maps of a snapshot: three times the y extent of features[0]
+/// (all copies of a pattern), centred on it, when that is less than half the grid's y extent
+/// (a pit on a roller: the whole-roller map shows it as a speck); `None` for an infinite line,
+/// a feature unbounded along y, or one that already fills the map.
+pub fn zoom_window(case: &Case, grid: &Grid) -> Option<(f64, f64)> {
+    if grid.ny < 2 {
+        return None;
+    }
+    let (lo, hi) = case.features.first()?.feature.y_span()?;
+    let span = hi - lo;
+    let (ylo, yhi) = (grid.y_min, grid.y_max());
+    if !(span > 0.0) || 3.0 * span > 0.5 * (yhi - ylo) {
+        return None;
+    }
+    let w = (lo - span).max(ylo)..(hi + span).min(yhi);
+    (w.end - w.start >= 8.0 * grid.dy).then_some((w.start, w.end))
+}
+
+/// The rows of `solution` whose cell centres lie in `y0 ..= y1`, as a solution on that strip of
+/// the grid (same x cells); `None` when fewer than 4 rows fall inside.
+pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
+    let g = solution.grid;
+    let rows: Vec<usize> = (0..g.ny)
+        .filter(|&j| g.y(j) >= y0 && g.y(j) <= y1)
+        .collect();
+    if rows.len() < 4 {
+        return None;
+    }
+    let (j0, j1) = (rows[0], rows[rows.len() - 1]);
+    let sub = Grid::new(
+        g.nx,
+        j1 - j0 + 1,
+        g.x_min,
+        g.x_max(),
+        g.y_min + j0 as f64 * g.dy,
+        g.y_min + (j1 + 1) as f64 * g.dy,
+    );
+    let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
+    let f = &solution.fields;
+    let fields = Fields {
+        pressure: cut(&f.pressure),
+        deformation: cut(&f.deformation),
+        film: f.film.as_deref().map(cut),
+        viscosity: f.viscosity.as_deref().map(cut),
+        density: f.density.as_deref().map(cut),
+    };
+    let mut summary = solution.summary.clone();
+    let (pm, k) = arg_max(&fields.pressure);
+    summary.max_pressure_pa = pm;
+    summary.max_pressure_at_m = [sub.x(k % sub.nx), sub.y(k / sub.nx)];
+    Some(Solution {
+        grid: sub,
+        fields,
+        summary,
+        transient: None,
+    })
 }
 
 // ---------------------------------------------------------------- shared helpers
@@ -1231,4 +1302,39 @@ pub fn write_passage_frame_png(
     let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
     let passage = Passage::new(case, grid, t, &shown);
     render_sized(path, (GIF_WIDTH, GIF_HEIGHT), |root| passage.draw(root, k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The crop keeps exactly the rows inside the window, with their values, on a grid whose
+    /// cells are the original ones.
+    #[test]
+    fn crop_keeps_the_rows_inside_the_window() {
+        let g = Grid::new(4, 10, -2.0, 2.0, -5.0, 5.0);
+        let field: Vec<f64> = (0..g.len()).map(|k| k as f64).collect();
+        let s = Solution {
+            grid: g,
+            fields: Fields {
+                pressure: field.clone(),
+                deformation: field.clone(),
+                film: Some(field.clone()),
+                viscosity: None,
+                density: None,
+            },
+            summary: Summary::default(),
+            transient: None,
+        };
+        // cell centres at y = -4.5, -3.5, ..., 4.5: the window -1.2 .. 2.7 holds -0.5 .. 2.5
+        let z = crop_y(&s, -1.2, 2.7).expect("4 rows");
+        assert_eq!((z.grid.nx, z.grid.ny), (4, 4));
+        assert_eq!((z.grid.dx, z.grid.dy), (g.dx, g.dy));
+        assert!((z.grid.y(0) + 0.5).abs() < 1e-12 && (z.grid.y(3) - 2.5).abs() < 1e-12);
+        assert_eq!(z.fields.pressure, field[16..32].to_vec());
+        assert_eq!(z.fields.film.as_deref(), Some(&field[16..32]));
+        assert_eq!(z.summary.max_pressure_pa, 31.0);
+        // too narrow a window: no crop
+        assert!(crop_y(&s, 0.0, 2.0).is_none());
+    }
 }

@@ -376,6 +376,26 @@ impl Feature {
         Ok(())
     }
 
+    /// The range of y (m) the feature covers, all copies of a pattern included; `None` when it
+    /// is unbounded along y (a transverse groove, a waviness).
+    pub fn y_span(&self) -> Option<(f64, f64)> {
+        let half = match &self.shape {
+            FeatureShape::Pit { length, .. } | FeatureShape::Dent { length, .. } => {
+                length.is_finite().then_some(0.5 * length)?
+            }
+            FeatureShape::Waviness { .. } => return None,
+            FeatureShape::HeightMap(map) => map.half_extent().1,
+        };
+        let (lo, hi) = self
+            .copies()
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, oy)| {
+                (a.min(oy), b.max(oy))
+            });
+        let yc = self.centre.1;
+        Some((yc + lo - half, yc + hi + half))
+    }
+
     /// Offsets of the copies from `centre` (one `(0, 0)` without a pattern).
     fn copies(&self) -> Vec<(f64, f64)> {
         match &self.pattern {
