@@ -277,6 +277,10 @@ struct StageEnd {
 /// relaxation (dtau_k+1 = dtau_k ||R_k|| / ||R_k+1||) so the iteration turns into Newton as
 /// the residual falls; each step is then backtracked on ||R||_2, and a step that does not
 /// reduce ||R|| is retried with dtau / 4.
+///
+/// The iteration is run as its phases ([`NewtonRun`]): evaluate the state (and test for
+/// convergence), find the direction (one preconditioned GMRES solve), search along it, then
+/// accept the step or shrink the pseudo-time step (and test for a stall).
 fn newton(
     sys: &mut System,
     st: &mut State,
@@ -285,103 +289,209 @@ fn newton(
     par: &EhlParams,
     stats: &mut Stats,
 ) -> StageEnd {
-    let n = sys.n();
-    let mut c = vec![0.0; n];
-    let mut share = vec![0.0; n];
-    let mut set = vec![false; n];
-    let mut set_t = vec![false; n];
-    let mut r = vec![0.0; n + 1];
-    let mut rt = vec![0.0; n + 1];
-    let mut u = vec![0.0; n + 1];
-    let mut bcol = vec![0.0; n];
-    let mut trial = st.clone();
-    let mut lin = Linear::new(n);
-    let mut work = GmresWork::default();
-    let mut spare_pc = None;
-    let mut e_h0 = vec![0.0; n + 1];
-    e_h0[n] = 1.0;
-    let mut best: Option<(f64, State)> = None;
-    let mut prev_merit: Option<f64> = None;
-    // with the dense preconditioner of a transient line (started from the predicted state, in
-    // Newton's region of fast convergence) the first step is solved as tightly as the
-    // tolerance asks (the floor below), not to ETA_MAX
-    let mut eta: f64 = if sys.dense_reuse { 0.0 } else { ETA_MAX };
-    let mut dtau = dtau0;
-    let mut full_step = false;
-    let mut recent: Vec<f64> = Vec::new();
-    let mut it = 0;
-    let mut fresh = true;
-    let mut merit = 0.0;
+    let mut run = NewtonRun::new(sys, st, dtau0);
     let end = loop {
-        if fresh {
-            if !st.is_finite() {
-                break (false, Termination::NonFiniteState);
+        if run.fresh {
+            if let Some(t) = run.evaluate(sys, st, tol, stats) {
+                break t;
             }
-            sys.scaling(st, &mut c, Some(&mut share));
-            sys.merit_vector(st, &c, &mut r, &mut set);
-            let res = sys.relative_residual(st, &c);
-            let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
-            let score = res.max(lerr.abs());
-            if score.is_finite() && best.as_ref().is_none_or(|b| score < b.0) {
-                match &mut best {
-                    Some(b) => {
-                        b.0 = score;
-                        b.1.clone_from(st);
-                    }
-                    None => best = Some((score, st.clone())),
+        }
+        if run.it >= par.max_iterations {
+            break Termination::MaxIterations(par.max_iterations);
+        }
+        if let Err(t) = run.direction(sys, st, par, stats) {
+            break t;
+        }
+        run.it += 1;
+        stats.newton += 1;
+        let accepted = run.line_search(sys, st);
+        if let Some(t) = run.next(st, accepted) {
+            break t;
+        }
+    };
+    run.finish(sys, st, end)
+}
+
+/// The state of one Newton run between its phases, and its work vectors.
+struct NewtonRun {
+    /// row scaling of the current state
+    c: Vec<f64>,
+    /// Poiseuille share of each row's diagonal (the preconditioner's coarse-grid switch)
+    share: Vec<f64>,
+    /// active set (cells held at P = 0) of the current state and of the trial state
+    set: Vec<bool>,
+    set_t: Vec<bool>,
+    /// merit vector (scaled residual and load row) of the current state and of the trial
+    r: Vec<f64>,
+    rt: Vec<f64>,
+    /// the Newton direction (P, H0)
+    u: Vec<f64>,
+    /// the scaled H0 column of the Jacobian
+    bcol: Vec<f64>,
+    e_h0: Vec<f64>,
+    trial: State,
+    lin: Linear,
+    work: GmresWork,
+    spare_pc: Option<Preconditioner>,
+    /// the best state seen (by max(residual, |load error|)) and its score
+    best: Option<(f64, State)>,
+    prev_merit: Option<f64>,
+    merit: f64,
+    /// GMRES forcing term
+    eta: f64,
+    /// pseudo-time step (infinite: plain Newton)
+    dtau: f64,
+    /// the current pseudo-time shift 1/dtau of this step's solve
+    shift: f64,
+    full_step: bool,
+    /// ||R|| of the last steps (stall test)
+    recent: Vec<f64>,
+    /// Newton steps taken
+    it: usize,
+    /// the current state is new (evaluate it)
+    fresh: bool,
+}
+
+impl NewtonRun {
+    fn new(sys: &System, st: &State, dtau0: f64) -> Self {
+        let n = sys.n();
+        let mut e_h0 = vec![0.0; n + 1];
+        e_h0[n] = 1.0;
+        NewtonRun {
+            c: vec![0.0; n],
+            share: vec![0.0; n],
+            set: vec![false; n],
+            set_t: vec![false; n],
+            r: vec![0.0; n + 1],
+            rt: vec![0.0; n + 1],
+            u: vec![0.0; n + 1],
+            bcol: vec![0.0; n],
+            e_h0,
+            trial: st.clone(),
+            lin: Linear::new(n),
+            work: GmresWork::default(),
+            spare_pc: None,
+            best: None,
+            prev_merit: None,
+            merit: 0.0,
+            // with the dense preconditioner of a transient line (started from the predicted
+            // state, in Newton's region of fast convergence) the first step is solved as
+            // tightly as the tolerance asks (the floor in `evaluate`), not to ETA_MAX
+            eta: if sys.dense_reuse { 0.0 } else { ETA_MAX },
+            dtau: dtau0,
+            shift: 0.0,
+            full_step: false,
+            recent: Vec::new(),
+            it: 0,
+            fresh: true,
+        }
+    }
+
+    /// Evaluates the (new) state: scaling, merit, the best state, the observer, the
+    /// convergence test, the next forcing term and pseudo-time step, the H0 column. Some when
+    /// the run ends here (converged, or a non-finite state).
+    fn evaluate(
+        &mut self,
+        sys: &mut System,
+        st: &State,
+        tol: f64,
+        stats: &mut Stats,
+    ) -> Option<Termination> {
+        let n = sys.n();
+        if !st.is_finite() {
+            return Some(Termination::NonFiniteState);
+        }
+        sys.scaling(st, &mut self.c, Some(&mut self.share));
+        sys.merit_vector(st, &self.c, &mut self.r, &mut self.set);
+        let res = sys.relative_residual(st, &self.c);
+        let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
+        let score = res.max(lerr.abs());
+        if score.is_finite() && self.best.as_ref().is_none_or(|b| score < b.0) {
+            match &mut self.best {
+                Some(b) => {
+                    b.0 = score;
+                    b.1.clone_from(st);
                 }
-            }
-            if let Some(o) = stats.observer.as_mut() {
-                o(&NewtonIterate {
-                    newton_steps: stats.newton,
-                    linear_iterations: stats.gmres,
-                    residual: res,
-                    load_error: lerr,
-                    cells: n,
-                    tolerance: tol,
-                });
-            }
-            if res <= tol && lerr.abs() <= tol {
-                break (true, Termination::Converged);
-            }
-            merit = norm(&r);
-            if let Some(pm) = prev_merit {
-                // Eisenstat & Walker (1996) choice 2, safeguarded to [1e-4, ETA_MAX]
-                eta = (0.9 * (merit / pm).powi(2)).clamp(1e-4, ETA_MAX);
-                // switched evolution relaxation, at least doubled after a full step
-                dtau *= (pm / merit)
-                    .min(100.0)
-                    .max(if full_step { 2.0 } else { 0.0 });
-            }
-            prev_merit = Some(merit);
-            // no need to solve far below what the tolerance asks: near the end a reduction of
-            // the residual by tol / score (with a safety factor 10) is enough (Kelley 1995,
-            // Iterative Methods for Linear and Nonlinear Equations, sec. 6.3). With the dense
-            // preconditioner, where one more digit costs about one GMRES iteration and one more
-            // Newton step at least two, the factor is 1000: the relative residual (F unscaled)
-            // falls some 30 times less than the scaled merit the GMRES tolerance is measured in
-            // (transient line, 2048 cells: 4.8e-6 -> 2.9e-8 for a linear reduction of 2e-4),
-            // so with 10 the step fell short of 1e-8 and a second Newton step was needed
-            let safety = if sys.dense_reuse { 1e-3 } else { 0.1 };
-            eta = eta.max((safety * tol / score).min(ETA_MAX));
-            // exact H0 column
-            sys.directional(st, &e_h0, &mut lin, &mut bcol);
-            for k in 0..n {
-                bcol[k] = if set[k] { 0.0 } else { c[k] * bcol[k] };
+                None => self.best = Some((score, st.clone())),
             }
         }
-        if it >= par.max_iterations {
-            break (false, Termination::MaxIterations(par.max_iterations));
+        if let Some(o) = stats.observer.as_mut() {
+            o(&NewtonIterate {
+                newton_steps: stats.newton,
+                linear_iterations: stats.gmres,
+                residual: res,
+                load_error: lerr,
+                cells: n,
+                tolerance: tol,
+            });
         }
-        let shift = if dtau.is_finite() && dtau < 1e12 {
-            1.0 / dtau
+        if res <= tol && lerr.abs() <= tol {
+            return Some(Termination::Converged);
+        }
+        self.merit = norm(&self.r);
+        let merit = self.merit;
+        if let Some(pm) = self.prev_merit {
+            // Eisenstat & Walker (1996) choice 2, safeguarded to [1e-4, ETA_MAX]
+            self.eta = (0.9 * (merit / pm).powi(2)).clamp(1e-4, ETA_MAX);
+            // switched evolution relaxation, at least doubled after a full step
+            self.dtau *= (pm / merit)
+                .min(100.0)
+                .max(if self.full_step { 2.0 } else { 0.0 });
+        }
+        self.prev_merit = Some(merit);
+        // no need to solve far below what the tolerance asks: near the end a reduction of
+        // the residual by tol / score (with a safety factor 10) is enough (Kelley 1995,
+        // Iterative Methods for Linear and Nonlinear Equations, sec. 6.3). With the dense
+        // preconditioner, where one more digit costs about one GMRES iteration and one more
+        // Newton step at least two, the factor is 1000: the relative residual (F unscaled)
+        // falls some 30 times less than the scaled merit the GMRES tolerance is measured in
+        // (transient line, 2048 cells: 4.8e-6 -> 2.9e-8 for a linear reduction of 2e-4),
+        // so with 10 the step fell short of 1e-8 and a second Newton step was needed
+        let safety = if sys.dense_reuse { 1e-3 } else { 0.1 };
+        self.eta = self.eta.max((safety * tol / score).min(ETA_MAX));
+        // exact H0 column
+        sys.directional(st, &self.e_h0, &mut self.lin, &mut self.bcol);
+        for k in 0..n {
+            self.bcol[k] = if self.set[k] {
+                0.0
+            } else {
+                self.c[k] * self.bcol[k]
+            };
+        }
+        None
+    }
+
+    /// The Newton direction `u`: J u = -R by preconditioned GMRES (the dense preconditioner
+    /// of a transient line when it applies, else the line / multigrid one), with the
+    /// pseudo-time shift on the Reynolds rows.
+    fn direction(
+        &mut self,
+        sys: &mut System,
+        st: &State,
+        par: &EhlParams,
+        stats: &mut Stats,
+    ) -> Result<(), Termination> {
+        self.shift = if self.dtau.is_finite() && self.dtau < 1e12 {
+            1.0 / self.dtau
         } else {
             0.0
         };
-        let rhs: Vec<f64> = r.iter().map(|v| -v).collect();
+        let shift = self.shift;
+        let rhs: Vec<f64> = self.r.iter().map(|v| -v).collect();
         let dense = if sys.dense_reuse && shift == 0.0 {
             dense_solve(
-                sys, st, &c, &set, &bcol, &rhs, &mut u, eta, par, &mut lin, &mut work, stats,
+                sys,
+                st,
+                &self.c,
+                &self.set,
+                &self.bcol,
+                &rhs,
+                &mut self.u,
+                self.eta,
+                par,
+                &mut self.lin,
+                &mut self.work,
+                stats,
             )
         } else {
             None
@@ -389,44 +499,57 @@ fn newton(
         let out = match dense {
             Some(out) => out,
             None => {
-                let Some(pc) =
-                    Preconditioner::new(sys, st, &c, &set, &share, &bcol, shift, spare_pc.take())
-                else {
-                    break (false, Termination::SingularPreconditioner);
+                let Some(pc) = Preconditioner::new(
+                    sys,
+                    st,
+                    &self.c,
+                    &self.set,
+                    &self.share,
+                    &self.bcol,
+                    shift,
+                    self.spare_pc.take(),
+                ) else {
+                    return Err(Termination::SingularPreconditioner);
                 };
-                let st_ref: &State = st;
+                let (c, set, lin) = (&self.c, &self.set, &mut self.lin);
                 let out = gmres(
-                    &mut work,
+                    &mut self.work,
                     &rhs,
-                    &mut u,
+                    &mut self.u,
                     par.gmres_restart,
                     par.max_linear_iterations,
-                    eta,
-                    &mut |v, o| jacobian_product(sys, st_ref, &mut lin, &c, &set, shift, v, o),
+                    self.eta,
+                    &mut |v, o| jacobian_product(sys, st, lin, c, set, shift, v, o),
                     &mut |v, o| pc.apply(v, o),
                 );
-                spare_pc = Some(pc);
+                self.spare_pc = Some(pc);
                 out
             }
         };
         stats.gmres += out.iterations;
-        it += 1;
-        stats.newton += 1;
-        // backtracking line search on ||R||_2 (same scaling c), P clamped at >= 0
+        Ok(())
+    }
+
+    /// Backtracking line search on ||R||_2 (same scaling c) along `u`, P clamped at >= 0: true
+    /// when a step length was accepted (the trial state holds it).
+    fn line_search(&mut self, sys: &mut System, st: &State) -> bool {
+        let n = sys.n();
+        let shift = self.shift;
         let mut lam = 1.0;
-        let accepted = u.iter().all(|v| v.is_finite())
+        let accepted = self.u.iter().all(|v| v.is_finite())
             && loop {
                 for k in 0..n {
-                    trial.p[k] = (st.p[k] + lam * u[k]).max(0.0);
+                    self.trial.p[k] = (st.p[k] + lam * self.u[k]).max(0.0);
                 }
-                trial.h0 = st.h0 + lam * u[n];
-                sys.eval(&mut trial);
+                self.trial.h0 = st.h0 + lam * self.u[n];
+                sys.eval(&mut self.trial);
                 // a negative film under pressure is the spurious branch eps = 0: not a step
+                let trial = &self.trial;
                 let film_ok = || (0..n).all(|k| trial.p[k] <= 0.0 || trial.h[k] > 0.0);
                 if trial.is_finite() && film_ok() {
-                    sys.merit_vector(&trial, &c, &mut rt, &mut set_t);
-                    let m = norm(&rt);
-                    if m.is_finite() && m <= (1.0 - 1e-4 * lam) * merit {
+                    sys.merit_vector(trial, &self.c, &mut self.rt, &mut self.set_t);
+                    let m = norm(&self.rt);
+                    if m.is_finite() && m <= (1.0 - 1e-4 * lam) * self.merit {
                         break true;
                     }
                 }
@@ -435,49 +558,64 @@ fn newton(
                     break false;
                 }
             };
-        full_step = accepted && lam == 1.0;
+        self.full_step = accepted && lam == 1.0;
+        accepted
+    }
+
+    /// After the search: the stall test, then the accepted step becomes the state, or the
+    /// pseudo-time step shrinks (plain Newton: the run ends). Some when the run ends here.
+    fn next(&mut self, st: &mut State, accepted: bool) -> Option<Termination> {
+        let (it, merit) = (self.it, self.merit);
         // stalled: ||R|| has not fallen by 0.1 % over the last 8 steps
-        recent.push(merit);
-        if recent.len() > 8 && merit > 0.999 * recent[recent.len() - 9] {
-            break (false, Termination::Stalled { step: it, merit });
+        self.recent.push(merit);
+        let k = self.recent.len();
+        if k > 8 && merit > 0.999 * self.recent[k - 9] {
+            return Some(Termination::Stalled { step: it, merit });
         }
         if accepted {
-            std::mem::swap(st, &mut trial);
-            fresh = true;
-        } else if shift == 0.0 {
-            break (false, Termination::LineSearchFailed { step: it });
+            std::mem::swap(st, &mut self.trial);
+            self.fresh = true;
+        } else if self.shift == 0.0 {
+            return Some(Termination::LineSearchFailed { step: it });
         } else {
-            dtau *= 0.25;
-            fresh = false;
-            if dtau < 1e-8 {
-                break (false, Termination::NoDescent { step: it });
+            self.dtau *= 0.25;
+            self.fresh = false;
+            if self.dtau < 1e-8 {
+                return Some(Termination::NoDescent { step: it });
             }
         }
-    };
-    if !end.0 {
-        if let Some((_, b)) = best {
-            *st = b;
-        }
-    } else {
-        // converged: cells of the active set carry P = 0 exactly (not a round-off positive value),
-        // so the mass flows see a clean cavitation boundary
-        sys.scaling(st, &mut c, None);
-        sys.merit_vector(st, &c, &mut r, &mut set);
-        if (0..n).any(|k| set[k] && st.p[k] != 0.0) {
-            for k in 0..n {
-                if set[k] {
-                    st.p[k] = 0.0;
-                }
-            }
-            sys.eval(st);
-        }
+        None
     }
-    sys.scaling(st, &mut c, None);
-    StageEnd {
-        converged: end.0,
-        reason: end.1,
-        residual: sys.relative_residual(st, &c),
-        load_error: (sys.carried(&st.p) - sys.load) / sys.load,
+
+    /// Ends the run: a failed run returns its best state; a converged one gets its active set
+    /// exactly at P = 0 (so the mass flows see a clean cavitation boundary); the final
+    /// residual and load error.
+    fn finish(mut self, sys: &mut System, st: &mut State, end: Termination) -> StageEnd {
+        let n = sys.n();
+        let converged = end.is_converged();
+        if !converged {
+            if let Some((_, b)) = self.best {
+                *st = b;
+            }
+        } else {
+            sys.scaling(st, &mut self.c, None);
+            sys.merit_vector(st, &self.c, &mut self.r, &mut self.set);
+            if (0..n).any(|k| self.set[k] && st.p[k] != 0.0) {
+                for k in 0..n {
+                    if self.set[k] {
+                        st.p[k] = 0.0;
+                    }
+                }
+                sys.eval(st);
+            }
+        }
+        sys.scaling(st, &mut self.c, None);
+        StageEnd {
+            converged,
+            reason: end,
+            residual: sys.relative_residual(st, &self.c),
+            load_error: (sys.carried(&st.p) - sys.load) / sys.load,
+        }
     }
 }
 
