@@ -9,6 +9,7 @@
 //! | `timeline.png` | stacked panels over a shared x axis (x_p in mm, or time when x_p does not move): maximum pressure (GPa), minimum and central film, friction coefficient (when any step has one); steps that did not converge are shaded red and marked |
 //! | `passage.gif` | with `output.animation` and at least two frames: the pressure map (fixed colour scale over all frames) above the centre-line pressure and film, x_p marked, x_p and time in the title; an infinite line contact (`ny == 1`) has the profile only |
 //! | `passage.png` | the kept frame with the highest pressure, drawn as a frame of `passage.gif` (always written) |
+//! | (zoom) | on a 2D grid where features[0] is small along y (a pit on a roller), `passage.gif` and `passage.png` show the strip of [`zoom_window`] around it, titled "zoom on features[0]"; the frames and the files for ParaView keep the whole grid |
 //! | `frames/frame_NNNNN.vtr`, `passage.pvd` | the frames for ParaView: one VTK XML rectilinear grid per frame (`pressure`, `film`; NNNNN the step), and the collection `passage.pvd` that opens them as one time series (`timestep` = time in s) |
 //! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run, and `pressure_zoom.png`, `film_zoom.png` on a strip of three times features[0]'s y extent when that is less than half the map ([`zoom_window`]) |
 //!
@@ -102,15 +103,28 @@ pub fn write(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
     write_timeline_csv(&dir.join(TIMELINE_CSV), t)?;
     write_frames_npz(&dir.join(FRAMES_NPZ), g, t)?;
     write_timeline_png(&dir.join(TIMELINE_PNG), case, t)?;
-    if case.output.animation && t.frames.len() >= 2 {
-        write_passage_gif(&dir.join(PASSAGE_GIF), case, g, t)?;
+    // the animation and its still zoom onto features[0] where the whole map would show it as
+    // a speck (a pit on a roller; see `zoom_window`)
+    let zoomed = zoom_window(case, g).and_then(|(y0, y1)| crop_record(g, t, y0, y1));
+    let zcase;
+    let (case_a, g_a, t_a) = match &zoomed {
+        Some((zg, zt)) => {
+            let mut c = case.clone();
+            c.title = format!("zoom on features[0] — {}", case.title);
+            zcase = c;
+            (&zcase, zg, zt)
+        }
+        None => (case, g, t),
+    };
+    if case.output.animation && t_a.frames.len() >= 2 {
+        write_passage_gif(&dir.join(PASSAGE_GIF), case_a, g_a, t_a)?;
     }
     // the still of the passage: the kept frame with the highest pressure
-    if let Some(k) = (0..t.frames.len()).max_by(|&a, &b| {
+    if let Some(k) = (0..t_a.frames.len()).max_by(|&a, &b| {
         let m = |f: &Frame| f.pressure.iter().cloned().fold(0.0f64, f64::max);
-        m(&t.frames[a]).total_cmp(&m(&t.frames[b]))
+        m(&t_a.frames[a]).total_cmp(&m(&t_a.frames[b]))
     }) {
-        write_passage_frame_png(&dir.join(PASSAGE_PNG), case, g, t, k)?;
+        write_passage_frame_png(&dir.join(PASSAGE_PNG), case_a, g_a, t_a, k)?;
     }
     write_vtk_series(dir, g, t)?;
     write_snapshots(&dir.join(SNAPSHOTS_DIR), case, solution)?;
@@ -470,10 +484,9 @@ pub fn zoom_window(case: &Case, grid: &Grid) -> Option<(f64, f64)> {
     (w.end - w.start >= 8.0 * grid.dy).then_some((w.start, w.end))
 }
 
-/// The rows of `solution` whose cell centres lie in `y0 ..= y1`, as a solution on that strip of
-/// the grid (same x cells); `None` when fewer than 4 rows fall inside.
-pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
-    let g = solution.grid;
+/// The strip of `g` whose cell centres lie in `y0 ..= y1` and its first and last row; `None`
+/// when fewer than 4 rows fall inside.
+fn crop_grid(g: &Grid, y0: f64, y1: f64) -> Option<(Grid, usize, usize)> {
     let rows: Vec<usize> = (0..g.ny)
         .filter(|&j| g.y(j) >= y0 && g.y(j) <= y1)
         .collect();
@@ -489,6 +502,42 @@ pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
         g.y_min + j0 as f64 * g.dy,
         g.y_min + (j1 + 1) as f64 * g.dy,
     );
+    Some((sub, j0, j1))
+}
+
+/// The record with every frame cut to the strip `y0 ..= y1` (see [`crop_grid`]), for the
+/// zoomed animation; the timeline is kept whole, the snapshots are dropped.
+fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid, TransientRecord)> {
+    let (sub, j0, j1) = crop_grid(g, y0, y1)?;
+    let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
+    let frames = t
+        .frames
+        .iter()
+        .map(|f| Frame {
+            step: f.step,
+            time_s: f.time_s,
+            x_p_m: f.x_p_m,
+            pressure: cut(&f.pressure),
+            film: cut(&f.film),
+        })
+        .collect();
+    Some((
+        sub,
+        TransientRecord {
+            timeline: t.timeline.clone(),
+            frames,
+            snapshots: Vec::new(),
+            dt_s: t.dt_s,
+            frames_every: t.frames_every,
+        },
+    ))
+}
+
+/// The rows of `solution` whose cell centres lie in `y0 ..= y1`, as a solution on that strip of
+/// the grid (same x cells); `None` when fewer than 4 rows fall inside.
+pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
+    let g = solution.grid;
+    let (sub, j0, j1) = crop_grid(&g, y0, y1)?;
     let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
     let f = &solution.fields;
     let fields = Fields {
