@@ -2,7 +2,7 @@
 mod common;
 use common::*;
 use ehl::case::{DensityModel, ViscosityModel};
-use ehl::ehl::{solve_steady, EhlParams, EhlProblem, EhlResult};
+use ehl::ehl::{EhlParams, EhlProblem, EhlResult};
 use ehl::elastic::{Deflection, FftDeflection};
 use ehl::grid::Grid;
 
@@ -16,6 +16,18 @@ pub fn solve_line_p(
     xin: f64,
     xout: f64,
     par: &EhlParams,
+) -> (EhlResult, Grid) {
+    solve_line_observed(c, nx, xin, xout, par, &mut |_| {})
+}
+
+/// [`solve_line_p`] telling `observer` of every Newton iterate.
+pub fn solve_line_observed(
+    c: &LineCase,
+    nx: usize,
+    xin: f64,
+    xout: f64,
+    par: &EhlParams,
+    observer: &mut (dyn FnMut(&ehl::ehl::NewtonIterate) + Send),
 ) -> (EhlResult, Grid) {
     let grid = Grid::new(nx, 1, xin * c.b, xout * c.b, -0.5, 0.5);
     let r = c.r;
@@ -35,7 +47,7 @@ pub fn solve_line_p(
         hertz_pressure: c.ph,
         initial_pressure: None,
     };
-    (solve_steady(&prob, par), grid)
+    (ehl::ehl::solve_steady_observed(&prob, par, observer), grid)
 }
 
 fn centre_index(grid: &Grid) -> usize {
@@ -223,27 +235,9 @@ fn observer_sees_the_newton_history_and_the_typed_termination() {
         ViscosityModel::Roelands,
         DensityModel::DowsonHigginson,
     );
-    let grid = Grid::new(256, 1, -4.5 * c.b, 1.5 * c.b, -0.5, 0.5);
-    let r = c.r;
-    let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
-    let e = c.e;
-    let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
-    let prob = EhlProblem {
-        grid,
-        gap: &gap,
-        operator: &op,
-        load: c.w,
-        lubricant: &c.lub,
-        entrainment_speed: c.ue,
-        reduced_radius: c.r,
-        reduced_modulus: c.e,
-        hertz_half_width: c.b,
-        hertz_pressure: c.ph,
-        initial_pressure: None,
-    };
     let par = EhlParams::default();
     let mut seen: Vec<ehl::ehl::NewtonIterate> = Vec::new();
-    let res = ehl::ehl::solve_steady_observed(&prob, &par, &mut |it| seen.push(*it));
+    let (res, _) = solve_line_observed(&c, 256, -4.5, 1.5, &par, &mut |it| seen.push(*it));
     assert!(res.converged, "{}", res.termination);
     assert_eq!(res.reason, ehl::ehl::Termination::Converged);
     assert_eq!(res.termination, res.reason.to_string());
