@@ -700,6 +700,11 @@ fn dense_solve(
     }
 }
 
+/// Whether residual `a` is better (smaller) than `b`, a NaN losing to any number.
+pub(crate) fn better(a: f64, b: f64) -> bool {
+    a < b || (b.is_nan() && !a.is_nan())
+}
+
 /// Plain Newton from `st`; if it fails, pseudo-transient continuation from the same start.
 fn solve_from(
     sys: &mut System,
@@ -719,7 +724,8 @@ fn solve_from(
         newton: Box::new(e.reason.clone()),
         pseudo_transient: Box::new(e2.reason.clone()),
     };
-    if e2.converged || e2.residual < e.residual {
+    // (a NaN residual loses to any other)
+    if e2.converged || better(e2.residual, e.residual) {
         *st = st2;
         StageEnd { reason, ..e2 }
     } else {

@@ -34,7 +34,9 @@
 //!   104 -> ~21 ms.
 
 use super::system::{Physics, Squeeze, State, System};
-use super::{line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats};
+use super::{
+    better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
+};
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;
 use crate::surface::Surface;
@@ -113,13 +115,21 @@ pub struct MassBalance {
 }
 
 impl MassBalance {
-    /// (inflow - outflow - side leakage - storage) / inflow.
+    /// (inflow - outflow - side leakage - storage) / inflow; without an inflow, relative to
+    /// the largest of the flows (0 when there is no flow at all).
     pub fn relative_error(&self) -> f64 {
         let r = self.inflow - self.outflow - self.side_leakage - self.storage;
-        if self.inflow != 0.0 {
-            r / self.inflow
+        let scale = if self.inflow != 0.0 {
+            self.inflow
         } else {
-            r
+            [self.outflow, self.side_leakage, self.storage]
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs()))
+        };
+        if scale != 0.0 {
+            r / scale
+        } else {
+            0.0
         }
     }
 }
@@ -277,6 +287,7 @@ fn run(
         let t0 = Instant::now();
         let t = step as f64 * problem.dt;
         sys.set_gap(&gap_at(problem, t));
+        let c0_before = sys.squeeze_c0();
         sys.squeeze = Some(match (&q2, params.scheme) {
             (Some(q2), TimeScheme::Bdf2) => Squeeze {
                 c0: 1.5 / dtau,
@@ -291,6 +302,12 @@ fn run(
                 history: q1.iter().map(|a| a / dtau).collect(),
             },
         });
+        // kept dense factors hold the old c0 on their diagonal: the switch from backward Euler
+        // to BDF2 (c0 from 1/dT to 3/(2 dT)) makes them a poor preconditioner (review: 14-16
+        // GMRES iterations a step until the budget forced a refactorisation)
+        if sys.squeeze_c0() != c0_before {
+            sys.dense_stale = true;
+        }
         predict(&past, &mut st);
         sys.eval(&mut st);
         let mut stats = Stats::default();
@@ -316,7 +333,8 @@ fn run(
                 &params.newton,
                 &mut stats,
             );
-            if e.converged || e.residual < end.residual {
+            // (a NaN residual loses to any other)
+            if e.converged || better(e.residual, end.residual) {
                 st = again;
                 end = e;
             }

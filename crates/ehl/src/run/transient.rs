@@ -108,7 +108,8 @@ pub fn frames_memory(case: &Case, k: usize) -> f64 {
 }
 
 /// The `output.frames_every` a transient case uses: the case's value, or the least k that
-/// keeps the frames within `budget` bytes (at least 1).
+/// keeps the frames and the snapshots ([`frames_memory`]) within `budget` bytes (every step's
+/// frame dropped but the first and last when even that does not fit).
 pub fn frames_every(case: &Case, budget: f64) -> usize {
     if let Some(k) = case.output.frames_every {
         return k.max(1);
@@ -116,11 +117,19 @@ pub fn frames_every(case: &Case, budget: f64) -> usize {
     let Some(kin) = kinematics(case) else {
         return 1;
     };
-    let need = frames_memory(case, 1);
-    if !(budget > 0.0) {
+    // frames_memory(k) = (steps / k + 2) frame + snapshots: the least k with that <= budget
+    let frame = frame_bytes(case.grid.nx, case.grid.ny);
+    let fixed = frames_memory(case, kin.steps.max(1)) - (1 + 2) as f64 * frame;
+    let room = budget - fixed - 2.0 * frame;
+    if !(room > frame) {
         return kin.steps.max(1);
     }
-    ((need / budget).ceil() as usize).clamp(1, kin.steps.max(1))
+    // floor(steps / k) <= m frames beyond the two fixed: k = floor(steps / (m + 1)) + 1
+    let m = (room / frame).floor() as usize;
+    if m >= kin.steps {
+        return 1;
+    }
+    (kin.steps / (m + 1) + 1).clamp(1, kin.steps.max(1))
 }
 
 /// Everything the transient run needs from `solve`.
@@ -353,34 +362,28 @@ pub(super) fn solve(
             "the friction integral failed at {friction_failures} converged step(s); their friction_coefficient cells in timeline.csv are empty"
         ));
     }
-    let (kp, pmax) =
-        record
-            .timeline
-            .iter()
-            .enumerate()
-            .fold((0, f64::NEG_INFINITY), |(k, m), (i, r)| {
-                if r.max_pressure_pa > m {
-                    (i, r.max_pressure_pa)
-                } else {
-                    (k, m)
-                }
-            });
-    summary.max_pressure_over_travel_pa = Some(pmax);
-    summary.max_pressure_over_travel_at_xp_m = Some(record.timeline[kp].x_p_m);
-    let (kh, hmin) =
-        record
-            .timeline
-            .iter()
-            .enumerate()
-            .fold((0, f64::INFINITY), |(k, m), (i, r)| {
-                if r.min_film_m < m {
-                    (i, r.min_film_m)
-                } else {
-                    (k, m)
-                }
-            });
-    summary.min_film_over_travel_m = Some(hmin);
-    summary.min_film_over_travel_at_xp_m = Some(record.timeline[kh].x_p_m);
+    // the extremes over the travel come from the converged steps (a step that did not converge
+    // holds its best state, whose spikes are not the physics); from every step when none did
+    let any_converged = record.timeline.iter().any(|r| r.converged);
+    let counted: Vec<&StepRecord> = record
+        .timeline
+        .iter()
+        .filter(|r| r.converged || !any_converged)
+        .collect();
+    let top = counted
+        .iter()
+        .copied()
+        .max_by(|a, b| a.max_pressure_pa.total_cmp(&b.max_pressure_pa))
+        .expect("step 0 is always in the timeline");
+    summary.max_pressure_over_travel_pa = Some(top.max_pressure_pa);
+    summary.max_pressure_over_travel_at_xp_m = Some(top.x_p_m);
+    let thin = counted
+        .iter()
+        .copied()
+        .min_by(|a, b| a.min_film_m.total_cmp(&b.min_film_m))
+        .expect("step 0 is always in the timeline");
+    summary.min_film_over_travel_m = Some(thin.min_film_m);
+    summary.min_film_over_travel_at_xp_m = Some(thin.x_p_m);
     let fr: Vec<f64> = record
         .timeline
         .iter()
@@ -419,5 +422,58 @@ fn fields_of(s: &StepResult) -> Fields {
         film: Some(s.film.clone()),
         viscosity: Some(s.viscosity.clone()),
         density: Some(s.density.clone()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn groove(set: &[&str]) -> Case {
+        let path = std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/ehl_transient_line_groove.toml"
+        ));
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        crate::case::load_file(path, &set).expect("example case")
+    }
+
+    /// Without `output.frames_every` the least k whose frames and snapshots fit the budget is
+    /// taken: k fits, k - 1 does not (snapshots included, which do not shrink with k).
+    #[test]
+    fn frames_every_is_the_least_that_fits() {
+        let case = groove(&[
+            "motion.travel.steps=100",
+            "output.snapshots=[0.0, 0.1e-3, 0.2e-3]",
+        ]);
+        let frame = frame_bytes(case.grid.nx, case.grid.ny);
+        for budget_frames in [200.0, 60.0, 30.0, 12.0] {
+            let budget = budget_frames * frame;
+            let k = frames_every(&case, budget);
+            assert!(frames_memory(&case, k) <= budget, "{budget_frames}: k {k}");
+            assert!(
+                k == 1 || frames_memory(&case, k - 1) > budget,
+                "{budget_frames}: k {k}"
+            );
+        }
+        // nothing fits: keep the first and the last only
+        assert_eq!(frames_every(&case, 2.0 * frame), 100);
+        // the case's own value wins
+        let fixed = groove(&["motion.travel.steps=100", "output.frames_every=7"]);
+        assert_eq!(frames_every(&fixed, 1.0), 7);
+    }
+
+    /// x_p and the snapshot steps of the path form: from at step 0, to at the last step.
+    #[test]
+    fn path_kinematics_reach_the_ends() {
+        let case = groove(&["motion.travel.steps=40"]);
+        let kin = kinematics(&case).expect("a travel");
+        assert_eq!(kin.steps, 40);
+        assert!((kin.x_p(0.0) + 1.2e-3).abs() < 1e-15);
+        assert!((kin.x_p(40.0 * kin.dt) - 1.0e-3).abs() < 1e-12);
+        assert_eq!(kin.nearest_step(-1.2e-3), 0);
+        assert_eq!(kin.nearest_step(1.0e-3), 40);
+        assert_eq!(kin.nearest_step(5.0), 40);
+        assert_eq!(kin.nearest_step(-1.2e-3 + 2.2e-3 * 0.5), 20);
     }
 }
