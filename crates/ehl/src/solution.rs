@@ -67,13 +67,14 @@ pub struct Summary {
     /// ehl: mass flow out through the sides (roller ends) (kg/s); inflow = outflow + side leakage
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side_leakage_kg_s: Option<f64>,
-    /// transient runs: the largest pressure over all steps (step 0 included) (Pa)
+    /// transient runs: the largest pressure over the converged steps (step 0 included; all
+    /// steps when none converged) (Pa)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_pressure_over_travel_pa: Option<f64>,
     /// transient runs: x_p (m) and step of that largest pressure
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_pressure_over_travel_at_xp_m: Option<f64>,
-    /// transient runs: the smallest film over all steps (m)
+    /// transient runs: the smallest film over the converged steps (m)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_film_over_travel_m: Option<f64>,
     /// transient runs: x_p (m) of that smallest film
