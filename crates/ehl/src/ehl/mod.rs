@@ -1010,11 +1010,7 @@ fn solve_grid(
     let ph = problem.hertz_pressure;
     let lub = problem.lubricant;
     let lambda = 12.0 * problem.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph);
-    let phys = Physics {
-        lubricant: lub.clone(),
-        ph,
-        lambda,
-    };
+    let phys = Physics::new(lub.clone(), ph, lambda);
     let init = init.filter(|p| p.len() == grid.len());
     if let Some(cg) = coarser(grid) {
         let cinit = init.map(|p| restrict(&grid, p, &cg));
@@ -1099,7 +1095,7 @@ fn solve_direct(
         loop {
             let f = (done + step).min(1.0);
             let last = f >= 1.0;
-            sys.phys.lubricant.pressure_viscosity_coefficient = alpha * f;
+            sys.phys.set_alpha(alpha * f);
             let mut cur = if fresh {
                 start(problem, &mut sys, init, alpha * f)
             } else {
@@ -1136,14 +1132,14 @@ fn solve_direct(
                         ..e
                     };
                     // the best full-alpha state is the direct attempt's
-                    sys.phys.lubricant.pressure_viscosity_coefficient = alpha;
+                    sys.phys.set_alpha(alpha);
                     st = initial.clone();
                     let _ = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
                     break;
                 }
             }
         }
-        sys.phys.lubricant.pressure_viscosity_coefficient = alpha;
+        sys.phys.set_alpha(alpha);
         sys.eval(&mut st);
     }
     (sys, st, end)

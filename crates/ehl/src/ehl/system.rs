@@ -52,9 +52,27 @@ pub(crate) struct Physics {
     pub ph: f64,
     /// lambda = 12 u_e eta0 R^2 / (b^3 p_h)
     pub lambda: f64,
+    /// the lubricant's viscosity law, its constants evaluated once
+    visc: viscosity::ViscosityLaw,
 }
 
 impl Physics {
+    pub fn new(lubricant: Lubricant, ph: f64, lambda: f64) -> Self {
+        let visc = viscosity::ViscosityLaw::of(&lubricant);
+        Physics {
+            lubricant,
+            ph,
+            lambda,
+            visc,
+        }
+    }
+
+    /// Sets the pressure-viscosity coefficient alpha (1/Pa) (continuation in alpha).
+    pub fn set_alpha(&mut self, alpha: f64) {
+        self.lubricant.pressure_viscosity_coefficient = alpha;
+        self.visc = viscosity::ViscosityLaw::of(&self.lubricant);
+    }
+
     #[inline]
     pub fn rho(&self, p: f64) -> f64 {
         density::relative_density(self.lubricant.density_model, self.ph * p)
@@ -70,12 +88,12 @@ impl Physics {
     /// eta/eta0
     #[inline]
     pub fn eta(&self, p: f64) -> f64 {
-        viscosity::log_relative_viscosity(&self.lubricant, self.ph * p).exp()
+        self.visc.log_relative(self.ph * p).exp()
     }
     /// (eta/eta0, d ln(eta)/dP) with one power evaluation
     #[inline]
     pub fn eta_dlneta(&self, p: f64) -> (f64, f64) {
-        let (ln, d) = viscosity::log_viscosity_and_derivative(&self.lubricant, self.ph * p);
+        let (ln, d) = self.visc.log_and_derivative(self.ph * p);
         (ln.exp(), self.ph * d)
     }
 }
@@ -986,11 +1004,7 @@ mod tests {
             density_model: DensityModel::DowsonHigginson,
             rheology: Rheology::Newtonian,
         };
-        let phys = Physics {
-            lubricant,
-            ph: 0.3e9,
-            lambda: 2.0,
-        };
+        let phys = Physics::new(lubricant, 0.3e9, 2.0);
         let op = Box::new(FftDeflection::half_space(grid, e));
         let mut sys = System::new(grid, op, &gap, b, r, phys, 100.0, 4, true);
         let n = grid.len();

@@ -224,11 +224,11 @@ fn run(
         &|| {},
     );
     let lub = base.lubricant;
-    let phys = Physics {
-        lubricant: lub.clone(),
+    let phys = Physics::new(
+        lub.clone(),
         ph,
-        lambda: 12.0 * base.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph),
-    };
+        12.0 * base.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph),
+    );
     let mut sys = System::new(
         grid,
         (base.operator)(grid),

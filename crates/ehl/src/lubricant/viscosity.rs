@@ -13,20 +13,90 @@ pub fn roelands_z(eta0: f64, alpha: f64) -> f64 {
     alpha * ROELANDS_PR / (eta0.ln() - ROELANDS_LN_ETA_INF)
 }
 
+/// A pressure-viscosity law with its constants evaluated once: plain numbers, no case types
+/// (the solvers build one per lubricant and evaluate it at every cell of every state).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ViscosityLaw {
+    /// Barus: ln(eta/eta0) = alpha p (alpha in 1/Pa)
+    Barus { alpha: f64 },
+    /// Roelands (thesis eq. 2.11, isothermal): ln(eta/eta0) = a [(1 + p/p_r)^z - 1] with
+    /// a = ln eta0 + 9.67 (eta0 in Pa s) and z = alpha p_r / a ([`roelands_z`])
+    Roelands { a: f64, z: f64 },
+}
+
+impl ViscosityLaw {
+    /// The law of `model` for eta0 (Pa s) and alpha (1/Pa).
+    pub fn new(model: ViscosityModel, eta0: f64, alpha: f64) -> Self {
+        match model {
+            ViscosityModel::Barus => ViscosityLaw::Barus { alpha },
+            ViscosityModel::Roelands => ViscosityLaw::Roelands {
+                a: eta0.ln() - ROELANDS_LN_ETA_INF,
+                z: roelands_z(eta0, alpha),
+            },
+        }
+    }
+
+    /// The law of a lubricant.
+    pub fn of(lub: &Lubricant) -> Self {
+        Self::new(
+            lub.viscosity_model,
+            lub.viscosity,
+            lub.pressure_viscosity_coefficient,
+        )
+    }
+
+    /// ln(eta/eta0) at pressure `p` (Pa); negative pressure is treated as ambient.
+    #[inline]
+    pub fn log_relative(&self, p: f64) -> f64 {
+        let p = p.max(0.0);
+        match *self {
+            ViscosityLaw::Barus { alpha } => alpha * p,
+            ViscosityLaw::Roelands { a, z } => a * ((1.0 + p / ROELANDS_PR).powf(z) - 1.0),
+        }
+    }
+
+    /// d ln(eta)/dp (1/Pa) at pressure `p`; 0 below ambient.
+    #[inline]
+    pub fn log_derivative(&self, p: f64) -> f64 {
+        if p < 0.0 {
+            return 0.0;
+        }
+        match *self {
+            ViscosityLaw::Barus { alpha } => alpha,
+            ViscosityLaw::Roelands { a, z } => {
+                z * a / ROELANDS_PR * (1.0 + p / ROELANDS_PR).powf(z - 1.0)
+            }
+        }
+    }
+
+    /// ([`Self::log_relative`], [`Self::log_derivative`]) with one power evaluation.
+    #[inline]
+    pub fn log_and_derivative(&self, p: f64) -> (f64, f64) {
+        match *self {
+            ViscosityLaw::Barus { alpha } => {
+                (alpha * p.max(0.0), if p < 0.0 { 0.0 } else { alpha })
+            }
+            ViscosityLaw::Roelands { a, z } => {
+                let t = 1.0 + p.max(0.0) / ROELANDS_PR;
+                let tz = t.powf(z);
+                let d = if p < 0.0 {
+                    0.0
+                } else {
+                    z * a / ROELANDS_PR * tz / t
+                };
+                (a * (tz - 1.0), d)
+            }
+        }
+    }
+}
+
 /// ln(eta/eta0) at pressure `p` (Pa); negative pressure is treated as ambient.
 ///
 /// * Roelands (thesis eq. 2.11, isothermal): (ln eta0 + 9.67) [(1 + p/p_r)^z - 1];
 /// * Barus: alpha p.
 #[inline]
 pub fn log_relative_viscosity(lub: &Lubricant, p: f64) -> f64 {
-    let p = p.max(0.0);
-    match lub.viscosity_model {
-        ViscosityModel::Barus => lub.pressure_viscosity_coefficient * p,
-        ViscosityModel::Roelands => {
-            let z = roelands_z(lub.viscosity, lub.pressure_viscosity_coefficient);
-            (lub.viscosity.ln() - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PR).powf(z) - 1.0)
-        }
-    }
+    ViscosityLaw::of(lub).log_relative(p)
 }
 
 /// Low-shear viscosity (Pa s) at pressure `p` (Pa): eta0 exp(log_relative_viscosity).
@@ -37,42 +107,13 @@ pub fn viscosity(lub: &Lubricant, p: f64) -> f64 {
 /// d ln(eta)/dp (1/Pa) at pressure `p`: alpha for Barus, z (ln eta0 + 9.67)/p_r (1 + p/p_r)^(z-1)
 /// for Roelands; 0 below ambient.
 pub fn log_viscosity_derivative(lub: &Lubricant, p: f64) -> f64 {
-    if p < 0.0 {
-        return 0.0;
-    }
-    match lub.viscosity_model {
-        ViscosityModel::Barus => lub.pressure_viscosity_coefficient,
-        ViscosityModel::Roelands => {
-            let z = roelands_z(lub.viscosity, lub.pressure_viscosity_coefficient);
-            z * (lub.viscosity.ln() - ROELANDS_LN_ETA_INF) / ROELANDS_PR
-                * (1.0 + p / ROELANDS_PR).powf(z - 1.0)
-        }
-    }
+    ViscosityLaw::of(lub).log_derivative(p)
 }
 
 /// (ln(eta/eta0), d ln(eta)/dp in 1/Pa) at pressure `p` (Pa): [`log_relative_viscosity`] and
-/// [`log_viscosity_derivative`] together (thesis eq. 2.11 for Roelands, the same laws and
-/// constants), with one power evaluation for Roelands: the EHL solver needs both at every cell
-/// of every state.
+/// [`log_viscosity_derivative`] together, with one power evaluation for Roelands.
 pub fn log_viscosity_and_derivative(lub: &Lubricant, p: f64) -> (f64, f64) {
-    match lub.viscosity_model {
-        ViscosityModel::Barus => {
-            let a = lub.pressure_viscosity_coefficient;
-            (a * p.max(0.0), if p < 0.0 { 0.0 } else { a })
-        }
-        ViscosityModel::Roelands => {
-            let a = lub.viscosity.ln() - ROELANDS_LN_ETA_INF;
-            let z = roelands_z(lub.viscosity, lub.pressure_viscosity_coefficient);
-            let t = 1.0 + p.max(0.0) / ROELANDS_PR;
-            let tz = t.powf(z);
-            let d = if p < 0.0 {
-                0.0
-            } else {
-                z * a / ROELANDS_PR * tz / t
-            };
-            (a * (tz - 1.0), d)
-        }
-    }
+    ViscosityLaw::of(lub).log_and_derivative(p)
 }
 
 #[cfg(test)]
