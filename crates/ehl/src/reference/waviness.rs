@@ -19,8 +19,9 @@ pub fn line_nabla(wavelength_over_b: f64, m: f64, l: f64) -> f64 {
 }
 
 /// The fitted amplitude ratio of a line contact, A_d / A_i = 1 / (1 + 0.17 nabla + 0.03 nabla^2)
-/// (the fit the project's issue 9 quotes for Venner et al. 1997 / Venner & Lubrecht 2000; a fit
-/// to numerical solutions over nabla ~ 0.1 .. 100).
+/// (dimensionless), the fit to numerical solutions that the project's issue 9 quotes for Venner
+/// et al. 1997 / Venner & Lubrecht 2000. Its coefficients and the (M, L) range it was fitted
+/// over are not checked here against the paper; docs/pits.md compares our solutions with it.
 pub fn line_amplitude_ratio(nabla: f64) -> f64 {
     1.0 / (1.0 + 0.17 * nabla + 0.03 * nabla * nabla)
 }
