@@ -43,7 +43,7 @@ use system::{
 };
 pub use transient::{
     solve_transient, MassBalance, MovingSurface, StepResult, TimeScheme, TransientEnd,
-    TransientParams, TransientProblem,
+    TransientParams, TransientProblem, DENSE_MAX,
 };
 
 /// A steady isothermal EHL problem (SI units).

@@ -46,7 +46,7 @@ use std::time::Instant;
 /// Largest line (cells) whose time steps are preconditioned by a dense LU kept over the steps:
 /// 4096 cells hold 128 MiB in f64 while factoring, and a factorisation takes ~2 s (2049
 /// unknowns: 0.26 s) on the 2-core machine.
-const DENSE_MAX: usize = 4096;
+pub const DENSE_MAX: usize = 4096;
 
 /// A body's surface with its features, where it starts and how fast it moves along x.
 #[derive(Clone, Copy)]

@@ -167,7 +167,15 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
         }
         .min(nx as f64);
         let precond = 2.0 * (3.0 * band + 6.0 + 2.0) * 8.0 * n * 4.0 / 3.0;
-        gmres + states + precond
+        // a transient infinite line keeps a dense LU of its (n + 1)^2 Jacobian as the
+        // preconditioner: assembled and factored in f64, kept in f32 (`linalg::dense`)
+        let dense =
+            if ny == 1 && nx <= crate::ehl::DENSE_MAX && transient::kinematics(case).is_some() {
+                (n + 1.0) * (n + 1.0) * (8.0 + 4.0)
+            } else {
+                0.0
+            };
+        gmres + states + precond + dense
     } else {
         0.0
     };
