@@ -2,7 +2,7 @@
 mod common;
 use common::*;
 use ehl::case::{DensityModel, ViscosityModel};
-use ehl::ehl::{EhlParams, EhlProblem, EhlResult};
+use ehl::ehl::{EhlParams, EhlResult};
 use ehl::elastic::{Deflection, FftDeflection};
 use ehl::grid::Grid;
 
@@ -34,19 +34,7 @@ pub fn solve_line_observed(
     let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
     let e = c.e;
     let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
-    let prob = EhlProblem {
-        grid,
-        gap: &gap,
-        operator: &op,
-        load: c.w,
-        lubricant: &c.lub,
-        entrainment_speed: c.ue,
-        reduced_radius: c.r,
-        reduced_modulus: c.e,
-        hertz_half_width: c.b,
-        hertz_pressure: c.ph,
-        initial_pressure: None,
-    };
+    let prob = c.problem(grid, &gap, &op);
     (ehl::ehl::solve_steady_observed(&prob, par, observer), grid)
 }
 

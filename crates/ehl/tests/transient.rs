@@ -4,7 +4,7 @@ mod common;
 use common::*;
 use ehl::case::{DensityModel, ViscosityModel};
 use ehl::ehl::{
-    solve_transient, EhlParams, EhlProblem, MovingSurface, StepResult, TimeScheme, TransientEnd,
+    solve_transient, EhlParams, MovingSurface, StepResult, TimeScheme, TransientEnd,
     TransientParams, TransientProblem,
 };
 use ehl::elastic::{Deflection, FftDeflection};
@@ -41,19 +41,7 @@ fn run_line(
     let e = c.e;
     let op = move |g: Grid| -> Box<dyn Deflection> { Box::new(FftDeflection::line(g, e)) };
     let problem = TransientProblem {
-        base: EhlProblem {
-            grid,
-            gap: &smooth,
-            operator: &op,
-            load: c.w,
-            lubricant: &c.lub,
-            entrainment_speed: c.ue,
-            reduced_radius: c.r,
-            reduced_modulus: c.e,
-            hertz_half_width: c.b,
-            hertz_pressure: c.ph,
-            initial_pressure: None,
-        },
+        base: c.problem(grid, &smooth, &op),
         smooth: &smooth,
         surfaces: vec![
             MovingSurface {

@@ -230,3 +230,29 @@ pub fn line_case(m: f64, l: f64, visc: ViscosityModel, dens: DensityModel) -> Li
         lub: lubricant(eta0, alpha, visc, dens),
     }
 }
+
+impl LineCase {
+    /// The steady problem of this line contact on `grid` with the gap `gap` and the elastic
+    /// operator `op` (callers own both: the problem borrows them).
+    #[allow(dead_code)]
+    pub fn problem<'a>(
+        &'a self,
+        grid: Grid,
+        gap: &'a dyn ehl::geometry::GapSampler,
+        op: &'a (dyn Fn(Grid) -> Box<dyn Deflection> + Sync),
+    ) -> ehl::ehl::EhlProblem<'a> {
+        ehl::ehl::EhlProblem {
+            grid,
+            gap,
+            operator: op,
+            load: self.w,
+            lubricant: &self.lub,
+            entrainment_speed: self.ue,
+            reduced_radius: self.r,
+            reduced_modulus: self.e,
+            hertz_half_width: self.b,
+            hertz_pressure: self.ph,
+            initial_pressure: None,
+        }
+    }
+}
