@@ -29,6 +29,10 @@ pub enum Error {
     /// A numerical failure that leaves no usable result.
     #[error("solver: {0}")]
     Solver(String),
+    /// The solve was stopped from outside through its [`crate::run::cancel::CancelToken`]
+    /// (the Python package's Ctrl-C); no result.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 pub type Result<T> = std::result::Result<T, Error>;

@@ -457,6 +457,18 @@ fn solve_level(
                 termination: "residual is not finite (degenerate operator or gap)".into(),
             };
         }
+        if crate::run::cancel::requested() {
+            return LevelResult {
+                p,
+                u,
+                approach,
+                iterations,
+                applications,
+                residual,
+                converged: false,
+                termination: "cancelled".into(),
+            };
+        }
         if residual < tol {
             if fresh {
                 return LevelResult {

@@ -193,6 +193,8 @@ pub enum Termination {
         newton: Box<Termination>,
         pseudo_transient: Box<Termination>,
     },
+    /// stopped from outside through [`crate::run::cancel`] (the result is thrown away)
+    Cancelled,
     /// the direct attempt failed and continuation in alpha stalled at `fraction` of alpha
     ContinuationStalled {
         first: Box<Termination>,
@@ -214,6 +216,7 @@ impl std::fmt::Display for Termination {
             Termination::NonFiniteState => write!(f, "non-finite state"),
             Termination::MaxIterations(n) => write!(f, "no convergence in {n} Newton steps"),
             Termination::SingularPreconditioner => write!(f, "singular preconditioner"),
+            Termination::Cancelled => write!(f, "cancelled"),
             Termination::Stalled { step, merit } => write!(
                 f,
                 "stalled at Newton step {step}: ||R|| {merit:.3e} unchanged over 8 steps"
@@ -291,6 +294,11 @@ fn newton(
 ) -> StageEnd {
     let mut run = NewtonRun::new(sys, st, dtau0);
     let end = loop {
+        // a cancelled solve stops at once; every later stage (pseudo-time, continuation, the
+        // second start) stops at its first check, so the whole solve unwinds in milliseconds
+        if crate::run::cancel::requested() {
+            break Termination::Cancelled;
+        }
         if run.fresh {
             if let Some(t) = run.evaluate(sys, st, tol, stats) {
                 break t;

@@ -284,6 +284,11 @@ fn run(
     // (P, H0) of the last three solutions, newest last: the predictor's history
     let mut past: Vec<(Vec<f64>, f64)> = vec![(st.p.clone(), st.h0)];
     for step in 1..=problem.steps {
+        if crate::run::cancel::requested() {
+            return TransientEnd::Stopped {
+                after_step: step - 1,
+            };
+        }
         let t0 = Instant::now();
         let t = step as f64 * problem.dt;
         sys.set_gap(&gap_at(problem, t));

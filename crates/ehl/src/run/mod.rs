@@ -11,6 +11,7 @@ use crate::solution::{Fields, Solution, Summary};
 use crate::{Error, Result};
 use std::time::Instant;
 
+pub mod cancel;
 pub mod transient;
 
 /// Receives progress reports from long solves: a fraction in [0, 1] (or NaN if unknown) and a
