@@ -1,0 +1,208 @@
+"""The Python API: cases, errors, solutions, arrays, writing."""
+
+import copy
+import json
+import math
+
+import numpy as np
+import pytest
+
+import ehl
+from conftest import example
+
+
+def small_ehl() -> ehl.Case:
+    c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
+    c.set("grid.nx", 128)
+    c.set("grid.ny", 32)
+    return c
+
+
+def test_from_file_set_check():
+    c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
+    assert c.kind == "ehl" and not c.transient
+    hertz = c.check()["hertz_pressure_pa"]
+    c.set("load.force", 5000)
+    assert c.get("load.force") == 5000
+    assert c.overrides == ["load.force=5000"]
+    d = c.check()
+    # line contact: p_h grows with the square root of the load
+    assert d["hertz_pressure_pa"] == pytest.approx(hertz * math.sqrt(5000 / 6000), rel=1e-12)
+    assert d["load_n"] == pytest.approx(5000, rel=1e-12)
+    for key in ["W", "U", "G", "moes_M", "moes_L", "reduced_modulus_pa", "hertz_half_width_m"]:
+        assert d[key] > 0, key
+    names = [f["formula"] for f in d["film_estimates"]]
+    assert "Pan-Hamrock (1989)" in names
+    assert d["transient"] is None
+    assert "ehl.Case(" in repr(c) and "load 5000.0 N" in repr(c)
+
+
+def test_from_toml_and_from_dict_give_the_same_case():
+    path = example("dry_roller_mirror1_psi.toml")
+    a = ehl.Case.from_file(path)
+    b = ehl.Case.from_toml(path.read_text(), file=str(path))
+    c = ehl.Case.from_dict(a.to_dict())
+    for x in (b, c):
+        assert x.check() == a.check()
+    assert ehl.Case.from_toml(a.to_toml()).check() == a.check()
+
+
+def test_set_accepts_tables_lists_and_numpy_values():
+    c = ehl.Case.from_file(example("dry_roller_mirror1_psi.toml"))
+    c.set("body1.profile", {"kind": "crowned", "crown_radius": 0.5})
+    assert c.get("body1.profile") == {"kind": "crowned", "crown_radius": 0.5}
+    c.set("grid.nx", np.int64(64))
+    c.set("load.force", np.float64(4000.0))
+    assert c.get("grid.nx") == 64 and c.get("load.force") == 4000.0
+    t = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
+    t.set("output.snapshots", np.array([-0.5e-3, 0.0]))
+    assert t.get("output.snapshots") == [-0.5e-3, 0.0]
+    t.set("features[0].depth", 5e-8)
+    assert t.get("features[0].depth") == 5e-8
+    assert t.transient and t.check()["transient"]["steps"] == 150
+
+
+def test_a_bad_key_raises_case_error_naming_the_key():
+    c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
+    with pytest.raises(ehl.CaseError) as e:
+        c.set("load.forse", 5000)
+    assert e.value.key == "load.forse"
+    assert "load.force" in e.value.reason  # the closest valid key
+    assert e.value.file.endswith("ehl_thesis_ch2_roller.toml")
+    assert "--set" not in str(e.value)
+    assert c.overrides == []  # unchanged
+    # a bad value names its key too
+    with pytest.raises(ehl.CaseError) as e:
+        c.set("body1.radius", -1.0)
+    assert e.value.key == "body1.radius"
+    with pytest.raises(ehl.CaseError) as e:
+        c.set("grid.nx", None)
+    assert e.value.key == "grid.nx"
+    with pytest.raises(ehl.CaseError) as e:
+        c.set("grid.nx", object())
+    assert e.value.key == "grid.nx"
+    # an unknown key in a dict, and text that is not TOML
+    d = c.to_dict()
+    d["lubricant"]["viscosty"] = 0.04
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict(d)
+    assert e.value.key == "lubricant.viscosty" and e.value.file == "<dict>"
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_toml("kind = ")
+    assert e.value.key is None and "TOML" in e.value.reason
+    with pytest.raises(ehl.CaseError):
+        ehl.Case.from_file("no/such/case.toml")
+    # CaseError is a ValueError, and every error an EhlError
+    assert issubclass(ehl.CaseError, ValueError) and issubclass(ehl.CaseError, ehl.EhlError)
+
+
+def test_copy_is_independent():
+    a = small_ehl()
+    b = a.copy()
+    b.set("load.force", 3000)
+    assert "load.force=3000" not in a.overrides
+    c = copy.deepcopy(b)
+    assert c.overrides == b.overrides
+
+
+def test_solution_arrays_are_read_only_views_of_the_right_shape():
+    sol = ehl.solve(small_ehl(), progress=False)
+    assert sol.converged
+    ny, nx = 32, 128
+    assert sol.x.shape == (nx,) and sol.y.shape == (ny,)
+    for name in ["pressure", "film", "deformation", "viscosity", "density"]:
+        a = getattr(sol, name)
+        assert a.shape == (ny, nx) and a.dtype == np.float64, name
+        assert not a.flags.writeable, name
+        # no copy: two reads share the solution's memory
+        assert np.shares_memory(a, getattr(sol, name)), name
+        with pytest.raises(ValueError):
+            a[0, 0] = 1.0
+    p = sol.pressure
+    del sol  # the view keeps the solution alive
+    assert np.isfinite(p).all() and p.max() > 1e8
+    s = ehl.solve(small_ehl(), progress=False)
+    summ = s.summary
+    assert summ["converged"] is True
+    assert summ["max_pressure_pa"] == pytest.approx(s.pressure.max(), rel=1e-15)
+    assert summ["grid_m"]["nx"] == nx and summ["case"]["grid"]["nx"] == nx
+    assert s.timeline is None and s.frames is None
+    r = repr(s)
+    assert "converged" in r and "GPa" in r and "Thesis ch. 2" in r
+
+
+def test_dry_solution_has_no_viscosity():
+    c = ehl.Case.from_file(example("dry_roller_mirror1_psi.toml"))
+    c.set("grid.nx", 48)
+    c.set("grid.ny", 48)
+    sol = ehl.solve(c, progress=False)
+    assert sol.converged and sol.viscosity is None and sol.density is None
+    assert sol.film.shape == (48, 48)
+
+
+def test_not_converged_returns_a_solution():
+    c = small_ehl()
+    c.set("solver.max_iterations", 1)
+    sol = ehl.solve(c, progress=False)
+    assert sol.converged is False
+    assert sol.summary["converged"] is False
+    assert "NOT converged" in repr(sol)
+
+
+def test_transient_timeline_and_frames():
+    c = ehl.Case.from_file(example("ehl_transient_line_groove.toml"))
+    c.set("grid.nx", 128)
+    c.set("motion.travel", {"from": -1.2e-3, "to": 1.0e-3, "steps": 20})
+    c.set("output.frames_every", 5)
+    c.set("output.snapshots", [0.0])
+    sol = ehl.solve(c, progress=False)
+    tl = sol.timeline
+    assert list(tl["step"]) == list(range(21))
+    assert tl["converged"].dtype == bool and tl["x_p_m"][0] == pytest.approx(-1.2e-3)
+    assert [f["step"] for f in sol.frames] == [0, 5, 10, 15, 20]
+    assert sol.frames[2]["pressure"].shape == (1, 128)
+    assert sol.snapshots[0]["pressure"].shape == (1, 128)
+    assert "time steps" in repr(sol)
+
+
+def test_progress_callback_sees_the_end():
+    seen = []
+    ehl.solve(small_ehl(), progress=lambda f, m: seen.append((f, m)))
+    assert seen and seen[-1][0] == 1.0
+    # progress=True off a terminal and without a notebook: no bar, no error
+    ehl.solve(small_ehl(), progress=True)
+
+
+def test_an_exception_in_the_callback_stops_the_solve():
+    def boom(f, m):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        ehl.solve(small_ehl(), progress=boom)
+
+
+def test_write_gives_the_cli_outputs_and_refuses_foreign_folders(tmp_path):
+    sol = ehl.solve(small_ehl(), progress=False)
+    out = tmp_path / "out"
+    sol.write(out)
+    names = {p.name for p in out.iterdir()}
+    assert {"summary.json", "fields.npz", "centerline.csv", "pressure.png", ".ehl-output"} <= names
+    written = json.loads((out / "summary.json").read_text())
+    mine = sol.summary
+    for k in ["max_pressure_pa", "min_film_m", "central_film_m", "load_n"]:
+        assert written[k] == mine[k]
+    sol.write(out)  # ehl's own folder is replaced
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("keep")
+    with pytest.raises(ehl.OutputError) as e:
+        sol.write(foreign)
+    assert isinstance(e.value, OSError) and "mine" in e.value.path
+    assert [p.name for p in foreign.iterdir()] == ["notes.txt"]
+    # nothing else was left beside the folders (no temporary folders, no lock files)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine", "out"]
+
+
+def test_solve_takes_a_path():
+    sol = ehl.solve(example("dry_ball_on_flat.toml"), progress=False)
+    assert sol.converged
