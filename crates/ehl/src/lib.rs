@@ -49,6 +49,7 @@ pub mod reference;
 pub mod reynolds;
 pub mod run;
 pub mod solution;
+pub mod stress;
 pub mod surface;
 pub mod units;
 

@@ -1,0 +1,3 @@
+//! Stress below the surface of each body from the surface pressure and shear traction.
+
+pub mod kernel;
