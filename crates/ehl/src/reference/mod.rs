@@ -6,6 +6,8 @@
 //! * [`film`]: classical EHL film-thickness fits, each with its groups and the lubricant laws
 //!   of the solutions it was fitted to.
 //! * [`palmgren`]: the empirical roller approach.
+//! * [`subsurface`]: closed-form stress fields below Hertz line (McEwen, Smith & Liu) and circular
+//!   (Huber) contacts.
 //! * [`waviness`]: amplitude reduction of waviness in transient EHL (Venner et al. 1997).
 //! * [`check`]: the `ehl check` report.
 
@@ -13,6 +15,7 @@ pub mod check;
 pub mod film;
 pub mod hertz;
 pub mod palmgren;
+pub mod subsurface;
 pub mod waviness;
 
 pub use check::{check_report, CheckReport};

@@ -1,0 +1,151 @@
+//! Stress below the surface (crate::stress) against the closed-form Hertz fields.
+
+use ehl::grid::Grid;
+use ehl::reference::subsurface::{hertz_circle_axis_stress, hertz_line_stress};
+use ehl::stress::derived::{max_shear, von_mises};
+use ehl::stress::field::stress_field;
+
+/// Largest difference over the field between the DC-FFT stress of a Hertz line pressure
+/// (traction mu p along +x) on `nx` cells over [-2b, 2b] and the McEwen / Smith-Liu closed form,
+/// at every cell centre and depth, in units of p0.
+fn line_error(nx: usize, mu: f64, depths: &[f64]) -> f64 {
+    let (b, p0, nu) = (1.0, 1.0, 0.3);
+    let grid = Grid::new(nx, 1, -2.0 * b, 2.0 * b, -0.5, 0.5);
+    // cell averages of the Hertz pressure (exact: the integral of sqrt(1 - x^2))
+    let prim = |x: f64| {
+        let x = x.clamp(-1.0, 1.0);
+        0.5 * (x * (1.0 - x * x).sqrt() + x.asin())
+    };
+    let p: Vec<f64> = (0..nx)
+        .map(|i| {
+            let x0 = grid.x_min + i as f64 * grid.dx;
+            p0 * (prim(x0 + grid.dx) - prim(x0)) / grid.dx
+        })
+        .collect();
+    let q: Vec<f64> = p.iter().map(|v| mu * v).collect();
+    let f = stress_field(&grid, &p, Some(&q), nu, depths, true);
+    let mut worst = 0.0_f64;
+    for (k, &z) in depths.iter().enumerate() {
+        for i in 0..nx {
+            let exact = hertz_line_stress(grid.x(i), z, b, p0, mu, nu);
+            let got = f.tensor(k * nx + i);
+            for c in 0..6 {
+                worst = worst.max((got[c] - exact[c]).abs());
+            }
+        }
+    }
+    worst
+}
+
+/// The whole field, all six components, every cell and 60 depths from 0.05 b to 3 b, frictionless
+/// and sliding (mu = 0.2). The loads are exact cell averages, so the only error is the
+/// piecewise-constant representation of p: O(dx^2) where z >> dx, measured 1.3e-3 p0 on 256 cells
+/// (dx = b/64, worst at the shallowest layer, z = 3.2 dx) and 3.3e-4 p0 on 512. The test asks for
+/// < 2e-3 p0 and second-order convergence (ratio > 3.5); a sign or coefficient error in any
+/// kernel gives errors of order 0.1 p0.
+#[test]
+fn hertz_line_field_point_by_point() {
+    let depths: Vec<f64> = (1..=60).map(|k| 0.05 * k as f64).collect();
+    for mu in [0.0, 0.2] {
+        let e1 = line_error(256, mu, &depths);
+        let e2 = line_error(512, mu, &depths);
+        eprintln!("mu {mu}: error {e1:.2e} (256), {e2:.2e} (512)");
+        assert!(e1 < 2e-3, "mu {mu}: {e1}");
+        assert!(e1 / e2 > 3.5, "mu {mu}: not second order: {e1} / {e2}");
+    }
+}
+
+/// Depth of the von Mises maximum on the axis region of a sliding Hertz line contact (DC-FFT
+/// field), in b, and the value in p0.
+fn von_mises_peak(mu: f64) -> (f64, f64) {
+    let nx = 256;
+    let grid = Grid::new(nx, 1, -2.0, 2.0, -0.5, 0.5);
+    let p: Vec<f64> = (0..nx).map(|i| (1.0 - grid.x(i).powi(2)).max(0.0).sqrt()).collect();
+    let q: Vec<f64> = p.iter().map(|v| mu * v).collect();
+    let depths: Vec<f64> = (1..=100).map(|k| 0.01 * k as f64).collect();
+    let f = stress_field(&grid, &p, Some(&q), 0.3, &depths, true);
+    let mut best = (0.0, 0.0);
+    for (k, &z) in depths.iter().enumerate() {
+        for i in 0..nx {
+            let v = von_mises(&f.tensor(k * nx + i));
+            if v > best.1 {
+                best = (z, v);
+            }
+        }
+    }
+    best
+}
+
+/// Johnson sec. 7.1: with friction the von Mises maximum moves up and reaches the surface for mu
+/// around 0.25-0.3. Frictionless: 0.557 p0 at 0.70 b (grid and depth step 0.01 b: +-0.01 b,
+/// +-2e-3 p0).
+#[test]
+fn sliding_moves_the_von_mises_maximum_to_the_surface() {
+    let (z0, v0) = von_mises_peak(0.0);
+    assert!((z0 - 0.70).abs() <= 0.011 && (v0 - 0.557).abs() < 2e-3, "{z0} {v0}");
+    let (z2, _) = von_mises_peak(0.2);
+    assert!(z2 > 0.2 && z2 < z0, "mu 0.2: peak at {z2}");
+    let (z4, _) = von_mises_peak(0.4);
+    assert!(z4 <= 0.02, "mu 0.4: peak at {z4}");
+    // the closed form agrees on where the maximum is
+    let m4 = (1..=100)
+        .map(|k| 0.01 * k as f64)
+        .map(|z| (0..=400).map(|i| von_mises(&hertz_line_stress(-2.0 + 0.01 * i as f64, z, 1.0, 1.0, 0.4, 0.3))).fold(0.0, f64::max))
+        .collect::<Vec<f64>>();
+    assert!(m4[0] >= m4.iter().cloned().fold(0.0, f64::max) - 1e-12);
+}
+
+/// Stress on the axis of a Hertz circle (3D kernels) against Huber's closed form, on an odd
+/// grid (a cell centre on the axis) with loads averaged over 8 x 8 sub-points per cell. Two
+/// domains with the same cells: [-1.5 a, 1.5 a]^2 and about [-3 a, 3 a]^2. A periodic (spectral) solver
+/// has image errors that grow as the domain shrinks; the zero-padded one must give the same
+/// answer on both (the loads are zero outside the contact). The axis error, 4.7e-4 p0 measured
+/// (cells of a/20, the circle's edge cut by square cells), is asked below 3e-3 p0.
+#[test]
+fn hertz_circle_axis_and_no_image_error() {
+    let (a, p0, nu) = (1.0, 1.0, 0.3);
+    let depths: Vec<f64> = (1..=40).map(|k| 0.05 * k as f64).collect();
+    let axis = |half: f64, n: usize| {
+        let grid = Grid::new(n, n, -half, half, -half, half);
+        let sub = 8;
+        let mut p = vec![0.0; n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let mut acc = 0.0;
+                for v in 0..sub {
+                    for u in 0..sub {
+                        let x = grid.x_min + (i as f64 + (u as f64 + 0.5) / sub as f64) * grid.dx;
+                        let y = grid.y_min + (j as f64 + (v as f64 + 0.5) / sub as f64) * grid.dy;
+                        acc += (1.0 - (x * x + y * y) / (a * a)).max(0.0).sqrt();
+                    }
+                }
+                p[j * n + i] = p0 * acc / (sub * sub) as f64;
+            }
+        }
+        let f = stress_field(&grid, &p, None, nu, &depths, false);
+        let c = (n / 2) * n + n / 2;
+        depths
+            .iter()
+            .enumerate()
+            .map(|(k, _)| f.tensor(k * n * n + c))
+            .collect::<Vec<_>>()
+    };
+    let small = axis(1.5, 61);
+    let large = axis(1.5 * 121.0 / 61.0, 121); // same cells, twice the width
+    let mut worst = 0.0_f64;
+    let mut domain = 0.0_f64;
+    for (k, &z) in depths.iter().enumerate() {
+        let (sr, sz) = hertz_circle_axis_stress(z, a, p0, nu);
+        let s = small[k];
+        worst = worst.max((s[2] - sz).abs()).max((s[0] - sr).abs()).max((s[1] - sr).abs());
+        // symmetry on the axis: no shear
+        assert!(s[3].abs() < 1e-9 && s[4].abs() < 1e-9 && s[5].abs() < 1e-9);
+        for c in 0..6 {
+            domain = domain.max((s[c] - large[k][c]).abs());
+        }
+    }
+    eprintln!("circle axis: error {worst:.2e} p0, domain change {domain:.2e} p0");
+    assert!(worst < 3e-3, "{worst}");
+    // identical cells and loads: only the f32 storage (6e-8 p0) and FFT round-off may differ
+    assert!(domain < 1e-6, "{domain}");
+}
