@@ -906,7 +906,7 @@ pub fn solve_steady_with_fallback_observed(
         )
     };
     let first = with(order[0]);
-    if first.converged || order[0] == order[1] {
+    if first.converged || order[0] == order[1] || crate::run::cancel::requested() {
         return first;
     }
     on_second();
@@ -1092,7 +1092,8 @@ fn solve_direct(
     let initial = st.clone();
     stats.stages += 1;
     let mut end = solve_from(&mut sys, &mut st, params.tolerance, params, stats);
-    if !end.converged && params.continuation && alpha > 0.0 {
+    // (a cancelled solve skips the continuation: every stage would stop at once anyway)
+    if !end.converged && params.continuation && alpha > 0.0 && !crate::run::cancel::requested() {
         // continuation in alpha from the start: stages alpha f, f -> 1, the increment halved
         // after a failed stage and grown after a successful one
         let first_reason = end.reason.clone();

@@ -148,8 +148,11 @@ mod tests {
                 "{:?}",
                 out.map(|_| ())
             );
+            // measured alone: well under 0.1 s; the bound leaves room for a CI machine whose
+            // two cores run the other tests at the same time
+            eprintln!("{}: stopped {late:?} after the cancel", case.title);
             assert!(
-                late < Duration::from_millis(500),
+                late < Duration::from_millis(1500),
                 "stopped {late:?} after the cancel"
             );
         }
