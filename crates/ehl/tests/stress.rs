@@ -138,14 +138,15 @@ fn hertz_circle_axis_and_no_image_error() {
         let (sr, sz) = hertz_circle_axis_stress(z, a, p0, nu);
         let s = small[k];
         worst = worst.max((s[2] - sz).abs()).max((s[0] - sr).abs()).max((s[1] - sr).abs());
-        // symmetry on the axis: no shear
-        assert!(s[3].abs() < 1e-9 && s[4].abs() < 1e-9 && s[5].abs() < 1e-9);
+        // symmetry on the axis: no shear, to the single-precision FFT round-off (~1e-6 p0)
+        assert!(s[3].abs() < 1e-5 && s[4].abs() < 1e-5 && s[5].abs() < 1e-5);
         for c in 0..6 {
             domain = domain.max((s[c] - large[k][c]).abs());
         }
     }
     eprintln!("circle axis: error {worst:.2e} p0, domain change {domain:.2e} p0");
     assert!(worst < 3e-3, "{worst}");
-    // identical cells and loads: only the f32 storage (6e-8 p0) and FFT round-off may differ
-    assert!(domain < 1e-6, "{domain}");
+    // identical cells and loads: only the single-precision FFT round-off (~1e-6 p0) may differ;
+    // a periodic image of the contact 3 a away would change sigma_zz at z = a by ~1e-2 p0
+    assert!(domain < 1e-5, "{domain}");
 }

@@ -4,7 +4,6 @@
 //! (sigma_xx, sigma_yy, sigma_zz, tau_yz, tau_xz, tau_xy), the tangential traction q = mu p acts
 //! on the body along +x.
 
-use std::f64::consts::PI;
 
 /// Stress at (x, z) below a Hertz line contact of half-width `b` and peak pressure `p0`
 /// (p = p0 sqrt(1 - x^2/b^2)) with a full-sliding traction q = `mu` p along +x, plane strain

@@ -183,62 +183,90 @@ pub fn strip(x: f64, z: f64, x1: f64, x2: f64, nu: f64) -> ([f64; 6], [f64; 6]) 
     (normal, tangential)
 }
 
+/// Parity of each stress kernel (Voigt order; normal 0..6, tangential 6..12) in (di, dj): the
+/// opposite of its corner functions' parity (the corner sum is a difference across the cell).
+/// Checked for every offset by the tests.
+const KERNEL_PARITY: [(f64, f64); 12] = [
+    (1.0, 1.0),   // normal sxx
+    (1.0, 1.0),   // normal syy
+    (1.0, 1.0),   // normal szz
+    (1.0, -1.0),  // normal syz
+    (-1.0, 1.0),  // normal sxz
+    (-1.0, -1.0), // normal sxy
+    (-1.0, 1.0),  // tangential sxx
+    (-1.0, 1.0),  // tangential syy
+    (-1.0, 1.0),  // tangential szz
+    (-1.0, -1.0), // tangential syz
+    (1.0, 1.0),   // tangential sxz
+    (1.0, -1.0),  // tangential sxy
+];
+
 /// Influence tables of one depth layer on a uniform grid of `nx` x `ny` cells of size
 /// `dx` x `dy`: for every offset (di, dj), |di| < nx, |dj| < ny, the 6 + 6 stress coefficients at
 /// the centre of cell (i, j) due to a unit load on cell (i - di, j - dj). `ny = 1` with an
-/// infinite `dy` is the plane-strain strip.
+/// infinite `dy` is the plane-strain strip. Stored over one quadrant (di, dj >= 0); the others
+/// follow from each kernel's parity.
 pub struct LayerKernel {
     nx: usize,
     ny: usize,
-    /// [component 0..12][(dj + ny - 1) * (2 nx - 1) + (di + nx - 1)]; components 0..6 normal,
-    /// 6..12 tangential
+    /// [component 0..12][dj * nx + di], di, dj >= 0; components 0..6 normal, 6..12 tangential
     values: Vec<Vec<f64>>,
 }
 
 impl LayerKernel {
     /// Builds the tables for depth `z` (m), Poisson ratio `nu`.
     pub fn new(nx: usize, ny: usize, dx: f64, dy: f64, z: f64, nu: f64) -> Self {
-        let wx = 2 * nx - 1;
-        let wy = 2 * ny - 1;
-        let mut values = vec![vec![0.0; wx * wy]; 12];
+        let mut values = vec![vec![0.0; nx * ny]; 12];
         if ny == 1 && !dy.is_finite() {
-            for (c, di) in (-(nx as isize - 1)..nx as isize).enumerate() {
-                let x = di as f64 * dx;
-                let (n, t) = strip(x, z, -0.5 * dx, 0.5 * dx, nu);
+            for di in 0..nx {
+                let (n, t) = strip(di as f64 * dx, z, -0.5 * dx, 0.5 * dx, nu);
                 for k in 0..6 {
-                    values[k][c] = n[k];
-                    values[6 + k][c] = t[k];
+                    values[k][di] = n[k];
+                    values[6 + k][di] = t[k];
                 }
             }
             return LayerKernel { nx, ny, values };
         }
-        // corner functions over one quadrant: xi = (k + 1/2) dx, eta = (l + 1/2) dy
-        let mut table = vec![[0.0; N_CORNER]; nx * ny];
-        for l in 0..ny {
-            let eta = (l as f64 + 0.5) * dy;
-            for k in 0..nx {
-                table[l * nx + k] = corner_functions((k as f64 + 0.5) * dx, eta, z);
+        // corner functions at the vertices xi = (k - 1/2) dx, eta = (l - 1/2) dy, k = 0..=nx,
+        // l = 0..=ny (k = 0 is xi = -dx/2: the parity of each function gives it from k = 1)
+        let (vx, vy) = (nx + 1, ny + 1);
+        let mut table = vec![[0.0; N_CORNER]; vx * vy];
+        for l in 1..vy {
+            let eta = (l as f64 - 0.5) * dy;
+            for k in 1..vx {
+                table[l * vx + k] = corner_functions((k as f64 - 0.5) * dx, eta, z);
             }
         }
-        // value of function f at vertex (v, w): xi = (v - 1/2) dx, eta = (w - 1/2) dy
-        let at = |v: isize, w: isize, f: usize| -> f64 {
-            let (k, sx) = if v >= 1 { (v - 1, 1.0) } else { (-v, PARITY[f].0) };
-            let (l, sy) = if w >= 1 { (w - 1, 1.0) } else { (-w, PARITY[f].1) };
-            sx * sy * table[l as usize * nx + k as usize][f]
-        };
-        for dj in -(ny as isize - 1)..ny as isize {
-            for di in -(nx as isize - 1)..nx as isize {
-                let mut d = [0.0; N_CORNER];
-                for (f, dk) in d.iter_mut().enumerate() {
-                    // cell spans xi in [(di - 1/2) dx, (di + 1/2) dx]: vertices di, di + 1
-                    *dk = at(di + 1, dj + 1, f) - at(di + 1, dj, f) - at(di, dj + 1, f)
-                        + at(di, dj, f);
+        for l in 0..vy {
+            for k in 0..vx {
+                if k == 0 || l == 0 {
+                    let (kk, ll) = (k.max(1), l.max(1));
+                    let src = table[ll * vx + kk];
+                    let mut v = [0.0; N_CORNER];
+                    for (f, vf) in v.iter_mut().enumerate() {
+                        let sx = if k == 0 { PARITY[f].0 } else { 1.0 };
+                        let sy = if l == 0 { PARITY[f].1 } else { 1.0 };
+                        *vf = sx * sy * src[f];
+                    }
+                    table[l * vx + k] = v;
                 }
+            }
+        }
+        for dj in 0..ny {
+            for di in 0..nx {
+                // the cell spans xi in [(di - 1/2) dx, (di + 1/2) dx]: vertices di, di + 1
+                let (a, b, c, e) = (
+                    &table[(dj + 1) * vx + di + 1],
+                    &table[dj * vx + di + 1],
+                    &table[(dj + 1) * vx + di],
+                    &table[dj * vx + di],
+                );
+                let d: [f64; N_CORNER] = std::array::from_fn(|f| a[f] - b[f] - c[f] + e[f]);
                 let (n, t) = combine(&d, z, nu);
-                let c = (dj + ny as isize - 1) as usize * wx + (di + nx as isize - 1) as usize;
+                let at = dj * nx + di;
                 for k in 0..6 {
-                    values[k][c] = n[k];
-                    values[6 + k][c] = t[k];
+                    values[k][at] = n[k];
+                    values[6 + k][at] = t[k];
                 }
             }
         }
@@ -246,9 +274,17 @@ impl LayerKernel {
     }
 
     /// Coefficient of component `k` (0..6 normal, 6..12 tangential) at offset (di, dj).
+    #[inline]
     pub fn get(&self, k: usize, di: isize, dj: isize) -> f64 {
-        let wx = 2 * self.nx - 1;
-        self.values[k][(dj + self.ny as isize - 1) as usize * wx + (di + self.nx as isize - 1) as usize]
+        let (sx, sy) = KERNEL_PARITY[k];
+        let s = if di < 0 { sx } else { 1.0 } * if dj < 0 { sy } else { 1.0 };
+        s * self.values[k][dj.unsigned_abs() * self.nx + di.unsigned_abs()]
+    }
+
+    /// The quadrant di, dj >= 0 of component `k` (row-major, `nx` per row) and its parity in
+    /// (di, dj).
+    pub fn quadrant(&self, k: usize) -> (&[f64], (f64, f64)) {
+        (&self.values[k], KERNEL_PARITY[k])
     }
 
     /// Grid size the table was built for.
@@ -394,6 +430,19 @@ mod tests {
                 // net force): a finite rectangle has it too, so compare sigma_xx at 1e-2
                 let tol = if k == 0 || k == 1 { 1e-2 } else { 2e-3 };
                 assert!((t3[k] - t2[k]).abs() < tol, "tangential {k}: {} vs {}", t3[k], t2[k]);
+            }
+        }
+    }
+
+    #[test]
+    fn layer_table_is_the_strip_formula() {
+        let (nx, dx, z, nu) = (6, 0.3, 0.2, 0.3);
+        let k = LayerKernel::new(nx, 1, dx, f64::INFINITY, z, nu);
+        for di in -5..6isize {
+            let (n, t) = strip(di as f64 * dx, z, -0.5 * dx, 0.5 * dx, nu);
+            for c in 0..6 {
+                assert!((k.get(c, di, 0) - n[c]).abs() < 1e-14, "n{c} {di}");
+                assert!((k.get(6 + c, di, 0) - t[c]).abs() < 1e-14, "t{c} {di}");
             }
         }
     }
