@@ -206,3 +206,11 @@ def test_write_gives_the_cli_outputs_and_refuses_foreign_folders(tmp_path):
 def test_solve_takes_a_path():
     sol = ehl.solve(example("dry_ball_on_flat.toml"), progress=False)
     assert sol.converged
+
+
+def test_a_tqdm_bar_on_a_terminal(monkeypatch, capsys):
+    pytest.importorskip("tqdm")
+    monkeypatch.setattr(ehl, "_interactive", lambda: True)  # as on a terminal or in a notebook
+    ehl.solve(small_ehl(), progress=True)
+    err = capsys.readouterr().err
+    assert "100%" in err and "Thesis ch. 2" in err
