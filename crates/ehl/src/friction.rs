@@ -232,6 +232,20 @@ pub fn surface_shear_stress(input: &FrictionInput) -> Result<Vec<f64>> {
         .collect())
 }
 
+/// Shear traction along +x that the film exerts on each surface (Pa), per cell: `[body 1,
+/// body 2]`. Body 2 gets the Couette and Poiseuille parts of the module documentation
+/// (tau_2 = C + P); body 1 gets the film's stress at z = 0, tau_1 = P - C: the sliding part holds
+/// the faster surface back and pulls the slower one forward, while the pressure-flow part acts
+/// with the same sign on both. These are the tangential loads of [`crate::stress`]. Errors as for
+/// [`surface_shear_stress`].
+pub fn surface_tractions(input: &FrictionInput) -> Result<[Vec<f64>; 2]> {
+    let parts = cell_stresses(input)?;
+    Ok([
+        parts.iter().map(|(c, p)| p - c).collect(),
+        parts.iter().map(|(c, p)| c + p).collect(),
+    ])
+}
+
 /// Friction force on body 2 and friction coefficient (thesis eq. 3.5, 3.9, 3.10): the surface
 /// shear stress summed over the cells times the cell area dx dy, divided by the load.
 ///

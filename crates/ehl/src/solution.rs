@@ -96,6 +96,39 @@ pub struct Summary {
     /// transient runs: the largest |mass balance| over the steps, relative to the inflow
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_mass_balance_error: Option<f64>,
+    /// `[stress]`: the largest von Mises stress over the chosen bodies (Pa) and where ([x, y, z],
+    /// m; z the depth in that body)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_von_mises_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_von_mises_at_m: Option<[f64; 3]>,
+    /// `[stress]`: the largest maximum shear (sigma_1 - sigma_3)/2 (Pa) and where
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_shear_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_shear_at_m: Option<[f64; 3]>,
+    /// `[stress]`: the largest |tau_xz| (Pa) and where
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_orthogonal_shear_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_orthogonal_shear_at_m: Option<[f64; 3]>,
+    /// `[fatigue]`: the Ioannides-Harris integral summed over the chosen bodies
+    /// (Pa^c m^(3-h); a line contact per metre)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fatigue_integral: Option<f64>,
+    /// `[fatigue]` with features: the same integral for smooth surfaces at the same conditions
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub smooth_fatigue_integral: Option<f64>,
+    /// `[fatigue]` with features: life against the smooth surfaces, (I_smooth / I)^(1/e)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub life_ratio: Option<f64>,
+    /// transient runs with `[stress]`: x_p (m) of the step whose stress is reported (the kept
+    /// frame with the highest pressure)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress_at_xp_m: Option<f64>,
+    /// `[stress]`: the figures of each chosen body
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<Vec<StressFigures>>,
     /// true when the EHL pressure and film were solved but the friction integral failed (the
     /// friction keys are then absent and `warnings` says why); written only when true
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -116,6 +149,20 @@ impl Summary {
     }
 }
 
+/// The stress figures of one body (`summary.json`: `stress`).
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct StressFigures {
+    pub body: u8,
+    pub max_von_mises_pa: f64,
+    pub max_von_mises_at_m: [f64; 3],
+    pub max_shear_pa: f64,
+    pub max_shear_at_m: [f64; 3],
+    pub max_orthogonal_shear_pa: f64,
+    pub max_orthogonal_shear_at_m: [f64; 3],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fatigue_integral: Option<f64>,
+}
+
 /// A solved case.
 #[derive(Debug, Clone)]
 pub struct Solution {
@@ -124,6 +171,8 @@ pub struct Solution {
     pub summary: Summary,
     /// transient runs: the timeline, frames and snapshots (`fields` and `summary` are the last step)
     pub transient: Option<TransientRecord>,
+    /// `[stress]`: the stress below the surface
+    pub stress: Option<crate::run::stress::StressAnalysis>,
 }
 
 /// One time step of a transient run (SI): a row of `timeline.csv`.

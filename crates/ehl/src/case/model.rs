@@ -196,6 +196,12 @@ pub struct Case {
     pub features: Vec<FeatureSpec>,
     /// `[output]`: per-step outputs of a transient run
     pub output: OutputSpec,
+    /// `[stress]`: stress below the surface (absent: not computed)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<StressSpec>,
+    /// `[fatigue]`: fatigue indicator (needs `[stress]`)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<FatigueSpec>,
 }
 
 /// One resolved `[[features]]` table: the feature as the solver samples it, on its body.
@@ -241,3 +247,48 @@ impl Case {
         self.body1.shape == Shape::Ball || self.body2.shape == Shape::Ball
     }
 }
+
+/// How the depth layers of `[stress]` are spaced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DepthSpacing {
+    /// fine near the surface: z_1 = half the smallest cell size (at most depth / layers), then a
+    /// constant ratio up to the deepest layer
+    Geometric,
+    /// z_k = depth k / layers
+    Uniform,
+}
+
+/// `[stress]`: the stress below the surface of each chosen body.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StressSpec {
+    /// the bodies whose stress is computed: [1], [2] or [1, 2]
+    pub bodies: Vec<u8>,
+    /// deepest layer (m)
+    pub depth_m: f64,
+    pub layers: usize,
+    pub spacing: DepthSpacing,
+    /// dry runs: Coulomb coefficient of full sliding (traction mu p along +x on body 1)
+    pub friction: f64,
+}
+
+impl StressSpec {
+    /// The layer depths (m, increasing, > 0) for cells of `dx` x `dy` (`dy` infinite for a line).
+    pub fn depths(&self, dx: f64, dy: f64) -> Vec<f64> {
+        let n = self.layers;
+        match self.spacing {
+            DepthSpacing::Uniform => (1..=n).map(|k| self.depth_m * k as f64 / n as f64).collect(),
+            DepthSpacing::Geometric => {
+                let z1 = (0.5 * dx.min(dy)).min(self.depth_m / n as f64);
+                if n == 1 {
+                    return vec![self.depth_m];
+                }
+                let r = (self.depth_m / z1).powf(1.0 / (n - 1) as f64);
+                (0..n).map(|k| if k + 1 == n { self.depth_m } else { z1 * r.powi(k as i32) }).collect()
+            }
+        }
+    }
+}
+
+/// `[fatigue]`: the parameters of the Ioannides-Harris integral (defined with the physics).
+pub use crate::stress::fatigue::Params as FatigueSpec;

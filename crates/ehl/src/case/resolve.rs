@@ -1713,6 +1713,110 @@ fn output(top: &Sec, span: Option<Span>) -> R<OutputSpec> {
     })
 }
 
+/// `[stress]` (optional). `b`: the Hertz half-width (m) that `depth` is given in.
+fn stress(top: &Sec, kind: Kind, b: f64) -> R<Option<StressSpec>> {
+    let Some(t) = sub(top, "stress", "the stress below the surface")? else {
+        return Ok(None);
+    };
+    let s = Sec {
+        file: top.file,
+        path: "stress",
+        table: t,
+    };
+    let bodies = match s.get("body") {
+        None => vec![1, 2],
+        Some(Value::Integer(1)) => vec![1],
+        Some(Value::Integer(2)) => vec![2],
+        Some(Value::String(v)) if v == "both" => vec![1, 2],
+        Some(other) => {
+            return Err(s.err(
+                "body",
+                format!("expected 1, 2 or \"both\" (the body whose stress is computed), found {}", describe(other)),
+            ))
+        }
+    };
+    let depth_m = match (s.positive("depth", "Hertz half-widths b")?, s.positive("depth_m", "m")?) {
+        (Some(_), Some(_)) => {
+            return Err(s.err(
+                "depth_m",
+                "give the deepest layer once: depth (in Hertz half-widths b) or depth_m (in m), not both",
+            ))
+        }
+        (Some(d), None) => d * b,
+        (None, Some(d)) => d,
+        (None, None) => 3.0 * b,
+    };
+    let layers = s.count("layers", "the number of depth layers", 1)?.unwrap_or(48);
+    if layers > 1024 {
+        return Err(s.err("layers", format!("{layers} layers is more than 1024; the cost grows with the layers")));
+    }
+    let spacing = match s.choice("spacing", &["geometric", "uniform"])? {
+        Some("uniform") => DepthSpacing::Uniform,
+        _ => DepthSpacing::Geometric,
+    };
+    let friction = s.non_negative("friction", "(Coulomb coefficient)")?.unwrap_or(0.0);
+    if friction != 0.0 && kind == Kind::Ehl {
+        return Err(s.err(
+            "friction",
+            "stress.friction is for dry runs; in an EHL run the surface shear comes from the lubricant's rheology (the friction integral's shear stress)",
+        ));
+    }
+    if s.has("window") {
+        return Err(s.err(
+            "window",
+            "the passage maps of a transient run (stress.window) are not implemented yet; leave the key out (the stress is computed at the step of highest pressure)",
+        ));
+    }
+    Ok(Some(StressSpec {
+        bodies,
+        depth_m,
+        layers,
+        spacing,
+        friction,
+    }))
+}
+
+/// `[fatigue]` (optional; needs `[stress]`).
+fn fatigue(top: &Sec, has_stress: bool) -> R<Option<FatigueSpec>> {
+    let Some(t) = sub(top, "fatigue", "the fatigue indicator")? else {
+        return Ok(None);
+    };
+    let s = Sec {
+        file: top.file,
+        path: "fatigue",
+        table: t,
+    };
+    if !has_stress {
+        return Err(s.err(
+            "criterion",
+            "[fatigue] needs the stress below the surface: add a [stress] table (e.g. [stress] with depth = 3.0, layers = 48)",
+        ));
+    }
+    use crate::stress::fatigue::Criterion;
+    let criterion = match s.choice("criterion", &["von-mises", "orthogonal-shear", "max-shear"])? {
+        Some("orthogonal-shear") => Criterion::OrthogonalShear,
+        Some("max-shear") => Criterion::MaxShear,
+        _ => Criterion::VonMises,
+    };
+    let fatigue_limit = s.non_negative("fatigue_limit", "Pa")?.unwrap_or(0.0);
+    let weibull_slope = s.positive("weibull_slope", "")?.unwrap_or(1.1);
+    let stress_exponent = s.positive("stress_exponent", "")?.unwrap_or(31.0 / 3.0);
+    let depth_exponent = s.non_negative("depth_exponent", "")?.unwrap_or(0.0);
+    if s.has("dang_van") {
+        return Err(s.err(
+            "dang_van",
+            "the Dang Van indicator needs the stress history over a passage, which is not implemented yet; leave the key out",
+        ));
+    }
+    Ok(Some(FatigueSpec {
+        criterion,
+        fatigue_limit,
+        weibull_slope,
+        stress_exponent,
+        depth_exponent,
+    }))
+}
+
 /// Validates the whole tree (unknown keys already rejected) into a [`Case`].
 pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let top = Sec {
@@ -1802,6 +1906,8 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         }
     }
     let output = output(&top, span)?;
+    let stress = stress(&top, kind, b)?;
+    let fatigue = fatigue(&top, stress.is_some())?;
     let case = Case {
         title,
         kind,
@@ -1815,6 +1921,8 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         solver,
         features,
         output,
+        stress,
+        fatigue,
     };
     let (limit, source) = crate::run::memory_limit();
     crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;

@@ -96,6 +96,23 @@ const OTHER_KEYS: &[&str] = &[
     "output.frames_every",
     "output.snapshots",
     "output.animation",
+    "stress",
+    "stress.body",
+    "stress.depth",
+    "stress.depth_m",
+    "stress.layers",
+    "stress.spacing",
+    "stress.friction",
+    "stress.window",
+    "fatigue",
+    "fatigue.criterion",
+    "fatigue.fatigue_limit",
+    "fatigue.weibull_slope",
+    "fatigue.stress_exponent",
+    "fatigue.depth_exponent",
+    "fatigue.dang_van",
+    "fatigue.dang_van.alpha",
+    "fatigue.dang_van.beta",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

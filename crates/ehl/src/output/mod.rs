@@ -43,6 +43,7 @@ pub mod colormap;
 pub mod csv;
 pub mod npz;
 pub mod plot;
+pub mod stress;
 pub mod summary;
 pub mod synthetic;
 pub mod transient;
@@ -213,6 +214,7 @@ fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
     }
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
     transient::write(tmp, case, solution)?;
+    stress::write(tmp, case, solution)?;
     Ok(())
 }
 

@@ -56,6 +56,8 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
         },
         features: Vec::new(),
         output: Default::default(),
+        stress: None,
+        fatigue: None,
     }
 }
 
@@ -153,6 +155,7 @@ pub fn dry_ball() -> (Case, Solution) {
     (
         case,
         Solution {
+            stress: None,
             grid,
             fields,
             summary,
@@ -222,6 +225,7 @@ pub fn dry_roller() -> (Case, Solution) {
     (
         case,
         Solution {
+            stress: None,
             grid,
             fields,
             summary,
@@ -279,6 +283,7 @@ pub fn dry_infinite_line() -> (Case, Solution) {
     (
         case,
         Solution {
+            stress: None,
             grid,
             fields,
             summary,
@@ -380,6 +385,7 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
     (
         case,
         Solution {
+            stress: None,
             grid,
             fields: f,
             summary,

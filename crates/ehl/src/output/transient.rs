@@ -408,6 +408,7 @@ pub fn snapshot_solution(
     (
         c,
         Solution {
+            stress: None,
             grid: g,
             fields: fields.clone(),
             summary,
@@ -552,6 +553,7 @@ pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
     summary.max_pressure_pa = pm;
     summary.max_pressure_at_m = [sub.x(k % sub.nx), sub.y(k / sub.nx)];
     Some(Solution {
+        stress: None,
         grid: sub,
         fields,
         summary,
@@ -1364,6 +1366,7 @@ mod tests {
         let g = Grid::new(4, 10, -2.0, 2.0, -5.0, 5.0);
         let field: Vec<f64> = (0..g.len()).map(|k| k as f64).collect();
         let s = Solution {
+            stress: None,
             grid: g,
             fields: Fields {
                 pressure: field.clone(),

@@ -100,13 +100,24 @@ pub fn rectilinear_xml(
     fields: &[(&str, &[f64])],
     time_s: Option<f64>,
 ) -> Vec<u8> {
-    let (nx, ny) = (grid.nx, grid.ny);
-    let (xs, ys) = (grid.xs(), grid.ys());
-    let zs = [0.0];
-    let extent = format!("0 {} 0 {} 0 0", nx - 1, ny - 1);
+    rectilinear_volume_xml(&grid.xs(), &grid.ys(), &[0.0], fields, time_s)
+}
+
+/// A VTK XML RectilinearGrid (`.vtr`) over the points `xs` x `ys` x `zs` (x varying fastest,
+/// then y, then z): `fields` are `(name, values)` with `xs.len() * ys.len() * zs.len()` values
+/// each, written as `Float64` point data; `time_s` as in [`rectilinear_xml`].
+pub fn rectilinear_volume_xml(
+    xs: &[f64],
+    ys: &[f64],
+    zs: &[f64],
+    fields: &[(&str, &[f64])],
+    time_s: Option<f64>,
+) -> Vec<u8> {
+    let (nx, ny, nz) = (xs.len(), ys.len(), zs.len());
+    let extent = format!("0 {} 0 {} 0 {}", nx - 1, ny - 1, nz - 1);
     // appended blocks in the order of their offsets: the fields, then x, y, z
     let mut blocks: Vec<&[f64]> = fields.iter().map(|(_, v)| *v).collect();
-    blocks.extend([&xs[..], &ys[..], &zs[..]]);
+    blocks.extend([xs, ys, zs]);
     let mut offsets = Vec::with_capacity(blocks.len());
     let mut at = 0usize;
     for b in &blocks {

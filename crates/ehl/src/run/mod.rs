@@ -12,6 +12,7 @@ use crate::{Error, Result};
 use std::time::Instant;
 
 pub mod cancel;
+pub mod stress;
 pub mod transient;
 
 /// Receives progress reports from long solves: a fraction in [0, 1] (or NaN if unknown) and a
@@ -186,10 +187,20 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
         .output
         .frames_every
         .map_or(0.0, |k| transient::frames_memory(case, k));
+    // [stress]: per body the six components, von Mises and the maximum shear (f32), plus one
+    // criterion copy for [fatigue]; per thread the layer's tables and FFT buffers (~20 cells x 16 B)
+    let stress = case.stress.as_ref().map_or(0.0, |s| {
+        let per_body = crate::stress::field::field_bytes(nx * ny, s.layers, 3);
+        let threads = rayon::current_num_threads() as f64;
+        per_body * s.bodies.len() as f64 + threads * (nx * ny) as f64 * 20.0 * 16.0
+    });
+    let total = elastic + dry + fields + ehl + frames + stress;
     MemoryEstimate {
-        bytes: elastic + dry + fields + ehl + frames,
-        key: if frames > 0.5 * (elastic + dry + fields + ehl + frames) {
+        bytes: total,
+        key: if frames > 0.5 * total {
             "output.frames_every"
+        } else if stress > 0.5 * total {
+            "stress.layers"
         } else if ny > nx {
             "grid.ny"
         } else {
@@ -345,6 +356,7 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
             summary.max_pressure_pa = pmax;
             summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
             Solution {
+                stress: None,
                 grid,
                 fields: Fields {
                     pressure: dry.pressure,
@@ -389,9 +401,41 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
     solution.summary.friction_requested = friction_requested(case);
     clamp_negative_film(&mut solution);
     edge_pressure_warnings(case, &geometry, &mut solution);
+    add_stress(case, &mut solution, progress)?;
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
     progress.report(1.0, "done");
     Ok(solution)
+}
+
+/// `[stress]` and `[fatigue]`: the stress below the surface, its figures, and with features the
+/// life against the same case with smooth surfaces (solved here, steadily, with the same grid).
+fn add_stress(case: &Case, solution: &mut Solution, progress: &dyn Progress) -> Result<()> {
+    if case.stress.is_none() {
+        return Ok(());
+    }
+    progress.report(f64::NAN, "stress below the surface");
+    let mut warnings = Vec::new();
+    if let Some(a) = stress::analyse(case, solution, &mut warnings)? {
+        stress::summarise(case, &a, &mut solution.summary);
+        solution.stress = Some(a);
+    }
+    solution.summary.warnings.extend(warnings);
+    if let (Some(params), false) = (case.fatigue, case.features.is_empty()) {
+        progress.report(f64::NAN, "smooth reference for the life ratio");
+        let smooth = solve(&stress::smooth_reference(case), &Silent)?;
+        if !smooth.summary.converged {
+            solution.summary.warnings.push(
+                "life_ratio: the smooth reference solve did not converge; the ratio is left out".into(),
+            );
+        } else if let (Some(i_ref), Some(i)) =
+            (smooth.summary.fatigue_integral, solution.summary.fatigue_integral)
+        {
+            solution.summary.smooth_fatigue_integral = Some(i_ref);
+            solution.summary.life_ratio =
+                Some(crate::stress::fatigue::life_ratio(i_ref, i, params.weibull_slope));
+        }
+    }
+    Ok(())
 }
 
 /// The friction figures into `summary`, or, when the integral fails, `friction_failed` and a
@@ -729,6 +773,7 @@ fn solve_ehl(
         );
     }
     Ok(Solution {
+        stress: None,
         grid,
         fields: Fields {
             pressure: r.pressure,
