@@ -70,6 +70,8 @@ pub(crate) fn case(body1: Body, body2: Body, force: f64) -> Case {
         },
         features: Vec::new(),
         output: Default::default(),
+        stress: None,
+        fatigue: None,
     }
 }
 

@@ -403,6 +403,8 @@ mod tests {
             },
             features: Vec::new(),
             output: Default::default(),
+            stress: None,
+            fatigue: None,
         }
     }
 
