@@ -169,6 +169,10 @@ def test_sigint_stops_a_long_solve_promptly(tmp_path):
         sent.append(time.perf_counter())
         signal.pthread_kill(main, signal.SIGINT)  # as Ctrl-C: SIGINT to the main thread
 
+    # Python raises KeyboardInterrupt on SIGINT only when SIGINT was not ignored at its start;
+    # a shell ignores it in background jobs (`./test.sh &`, some CI runners): put the handler
+    # of an interactive Python (a terminal, Jupyter) in place for this test
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, interrupt)
     start = time.perf_counter()
     timer.start()
@@ -179,6 +183,7 @@ def test_sigint_stops_a_long_solve_promptly(tmp_path):
                         f"interrupt (SIGINT sent at {[t - start for t in sent]} s): {sol!r}")
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     late = time.perf_counter() - sent[0]
     assert late < 1.0, f"KeyboardInterrupt came {late:.2f} s after SIGINT"
     # nothing was written and the next solve works
