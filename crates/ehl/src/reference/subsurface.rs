@@ -57,7 +57,7 @@ mod tests {
             assert!((s[4] + mu * p).abs() < 1e-12, "sxz {x}");
             assert!((s[0] - (-p - 2.0 * mu * p0 * x / b)).abs() < 1e-12, "sxx {x}");
         }
-        // outside the contact sigma_xx = -2 mu p0 (x/b -+ sqrt(x^2/b^2 - 1)) (Johnson eq. 7.?):
+        // outside the contact sigma_xx = -2 mu p0 (x/b -+ sqrt(x^2/b^2 - 1)) (Johnson 1985 sec. 7.1):
         // tension behind (2 mu p0 at the trailing edge), compression ahead
         for &x in &[-1.5, -1.0 - 1e-12, 1.5] {
             let s = hertz_line_stress(x, 0.0, b, p0, mu, nu);

@@ -431,8 +431,16 @@ fn add_stress(case: &Case, solution: &mut Solution, progress: &dyn Progress) -> 
             (smooth.summary.fatigue_integral, solution.summary.fatigue_integral)
         {
             solution.summary.smooth_fatigue_integral = Some(i_ref);
-            solution.summary.life_ratio =
-                Some(crate::stress::fatigue::life_ratio(i_ref, i, params.weibull_slope));
+            let ratio = crate::stress::fatigue::life_ratio(i_ref, i, params.weibull_slope);
+            if ratio.is_finite() {
+                solution.summary.life_ratio = Some(ratio);
+            } else {
+                // I = 0 < I_ref: the surface with features stays below the fatigue limit
+                // everywhere while the smooth one does not; JSON has no infinity
+                solution.summary.warnings.push(format!(
+                    "life_ratio left out: with the features the stress stays below fatigue.fatigue_limit everywhere (integral 0) while the smooth surfaces exceed it (integral {i_ref:e}): an unbounded ratio"
+                ));
+            }
         }
     }
     Ok(())

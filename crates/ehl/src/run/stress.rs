@@ -22,7 +22,7 @@ pub struct StressAnalysis {
 
 /// Pressure, film and viscosity (viscosity None in a dry run) of the fields to analyse, and the
 /// transient step they belong to.
-fn loads(case: &Case, solution: &Solution) -> (Vec<f64>, Option<Vec<f64>>, Option<(usize, f64)>) {
+fn loads(solution: &Solution) -> (Vec<f64>, Option<Vec<f64>>, Option<(usize, f64)>) {
     if let Some(t) = &solution.transient {
         if let Some(f) = t.frames.iter().max_by(|a, b| {
             let pa = a.pressure.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -32,7 +32,6 @@ fn loads(case: &Case, solution: &Solution) -> (Vec<f64>, Option<Vec<f64>>, Optio
             return (f.pressure.clone(), Some(f.film.clone()), Some((f.step, f.x_p_m)));
         }
     }
-    let _ = case;
     (solution.fields.pressure.clone(), solution.fields.film.clone(), None)
 }
 
@@ -44,7 +43,7 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
     };
     let grid = solution.grid;
     let line = case.is_infinite_line();
-    let (pressure, film, step) = loads(case, solution);
+    let (pressure, film, step) = loads(solution);
     let pressure: Vec<f64> = pressure.iter().map(|p| p.max(0.0)).collect();
     let tractions: Option<[Vec<f64>; 2]> = match case.kind {
         Kind::Dry => (spec.friction != 0.0).then(|| {

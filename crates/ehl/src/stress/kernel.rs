@@ -331,7 +331,8 @@ mod tests {
         ]
     }
 
-    /// Cerruti's unit point force along +x at the origin (Johnson 1985 eq. 3.?? ; Love 1927).
+    /// Cerruti's unit point force along +x at the origin (Johnson 1985 sec. 3.2; Love 1927); the
+    /// same formulas were checked against the potential solution symbolically before coding.
     fn cerruti(x: f64, y: f64, z: f64, nu: f64) -> [f64; 6] {
         let rho = (x * x + y * y + z * z).sqrt();
         let a = rho + z;
