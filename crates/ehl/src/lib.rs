@@ -51,6 +51,7 @@ pub mod run;
 pub mod solution;
 pub mod stress;
 pub mod surface;
+pub mod thermal;
 pub mod units;
 
 pub use error::{Error, Result};
