@@ -129,6 +129,41 @@ pub struct Summary {
     /// `[stress]`: the figures of each chosen body
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<StressFigures>>,
+    /// `[thermal]`: the largest film temperature (K) and where ([x, y], m)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_film_temperature_k: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_film_temperature_at_m: Option<[f64; 2]>,
+    /// `[thermal]`: the largest surface temperature of [body1, body2] (K)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_surface_temperature_k: Option<[f64; 2]>,
+    /// `[thermal]`: the mean film temperature over the pressurised zone (p > 0), weighted by
+    /// area and across the film (K)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_film_temperature_k: Option<f64>,
+    /// `[thermal]`: the heat generated in the film by shear and compression (W; a line contact
+    /// per metre)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heat_generated_w: Option<f64>,
+    /// `[thermal]`: the heat conducted into [body1, body2] (W)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heat_to_body_w: Option<[f64; 2]>,
+    /// `[thermal]`: the heat carried out of the domain by the oil (W)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heat_convected_w: Option<f64>,
+    /// `[thermal]`: (generated - to bodies - convected) / generated
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_balance_error: Option<f64>,
+    /// `[thermal]`: the flash temperature, the largest surface temperature rise above the inlet
+    /// over both bodies (K), which a gear engineer compares with a scuffing limit
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flash_temperature_k: Option<f64>,
+    /// `[thermal]`: Blok's estimate of the same from the friction coefficient (K), for comparison
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flash_temperature_blok_k: Option<f64>,
+    /// `[thermal]`: outer (Reynolds - temperature) fixed-point iterations
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal_iterations: Option<usize>,
     /// true when the EHL pressure and film were solved but the friction integral failed (the
     /// friction keys are then absent and `warnings` says why); written only when true
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -173,6 +208,30 @@ pub struct Solution {
     pub transient: Option<TransientRecord>,
     /// `[stress]`: the stress below the surface
     pub stress: Option<crate::run::stress::StressAnalysis>,
+    /// `[thermal]`: the temperatures of the film and the bodies
+    pub temperature: Option<TemperatureFields>,
+}
+
+/// The temperatures of a thermal run (K) on the cell grid (row-major `ny * nx`), and the film
+/// temperature across z along one grid line.
+#[derive(Debug, Clone, Default)]
+pub struct TemperatureFields {
+    /// the film temperature at mid-film (z = h/2)
+    pub mid_film: Vec<f64>,
+    /// the largest film temperature across z
+    pub max_film: Vec<f64>,
+    /// the surface temperature of body 1 (z = 0) and body 2 (z = h)
+    pub surface_1: Vec<f64>,
+    pub surface_2: Vec<f64>,
+    /// the film temperature at the collocation points along the grid line `section_row`,
+    /// row-major (nz, nx): `film_section[k * nx + i]` at z = `section_z[k * nx + i]` (m)
+    pub film_section: Vec<f64>,
+    pub section_z: Vec<f64>,
+    pub section_row: usize,
+    /// collocation points across the film
+    pub nz: usize,
+    /// the inlet temperature T0
+    pub inlet: f64,
 }
 
 /// One time step of a transient run (SI): a row of `timeline.csv`.

@@ -695,7 +695,7 @@ fn load(top: &Sec, c: Contact, r: f64, e_red: f64) -> R<(Load, f64, f64)> {
 }
 
 /// `[lubricant]` (ehl only).
-fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
+fn lubricant(top: &Sec, e_red: f64) -> R<(Lubricant, RheologyTables)> {
     let t = sub(top, "lubricant", "the lubricant's properties")?.ok_or_else(|| {
         top.missing(
             "lubricant",
@@ -763,28 +763,52 @@ fn lubricant(top: &Sec, e_red: f64) -> R<Lubricant> {
         Some("constant") => DensityModel::Constant,
         _ => DensityModel::DowsonHigginson,
     };
-    Ok(Lubricant {
+    let (rheology, tables) = rheology(&s)?;
+    Ok((Lubricant {
         viscosity,
         pressure_viscosity_coefficient: alpha,
         density,
         viscosity_model,
         density_model,
-        rheology: rheology(&s)?,
-    })
+        rheology,
+    }, tables))
 }
 
-fn rheology(s: &Sec) -> R<Rheology> {
+fn rheology(s: &Sec) -> R<(Rheology, RheologyTables)> {
     let key = s.key("rheology");
     let Some((p, model)) = RHEOLOGY.read(s, &key)? else {
-        return Ok(Rheology::Newtonian);
+        return Ok((Rheology::Newtonian, RheologyTables::default()));
     };
-    let need = |k: &str, unit: &str| RHEOLOGY.need(&p, model, k, unit);
-    let lsc = p.positive("limiting_shear_coefficient", "dimensionless, tau_L / p")?;
-    Ok(match model {
+    // a parameter given as [[T, value], ...] pairs varies with temperature ([thermal]): its
+    // first value stands in until the inlet temperature is known (`thermal`)
+    let mut tables = RheologyTables::default();
+    let mut param = |k: &str, unit: &str, required: bool| -> R<Option<f64>> {
+        if let Some(t) = temperature_pairs(&p, k, unit)? {
+            let v = t.0[0].1;
+            match k {
+                "shear_modulus" => tables.shear_modulus = Some(t),
+                "power_law_index" => tables.power_law_index = Some(t),
+                "eyring_stress" => tables.eyring_stress = Some(t),
+                _ => tables.limiting_shear_coefficient = Some(t),
+            }
+            return Ok(Some(v));
+        }
+        if required {
+            RHEOLOGY.need(&p, model, k, unit).map(Some)
+        } else {
+            p.positive(k, unit)
+        }
+    };
+    let lsc = param("limiting_shear_coefficient", "dimensionless, tau_L / p", false)?;
+    let rheology = match model {
         "carreau" => {
-            let shear_modulus = need("shear_modulus", "Pa")?;
-            let n = need("power_law_index", "dimensionless")?;
-            if n > 1.0 {
+            let shear_modulus = param("shear_modulus", "Pa", true)?.unwrap_or(f64::NAN);
+            let n = param("power_law_index", "dimensionless", true)?.unwrap_or(f64::NAN);
+            let ns = tables
+                .power_law_index
+                .as_ref()
+                .map_or(vec![n], |t| t.0.iter().map(|v| v.1).collect());
+            if let Some(n) = ns.into_iter().find(|&n| n > 1.0) {
                 return Err(p.err(
                     "power_law_index",
                     format!("the Carreau power-law index of a shear-thinning lubricant lies in (0, 1], found {}", fmt_num(n)),
@@ -797,11 +821,57 @@ fn rheology(s: &Sec) -> R<Rheology> {
             }
         }
         "eyring" => Rheology::Eyring {
-            eyring_stress: need("eyring_stress", "Pa")?,
+            eyring_stress: param("eyring_stress", "Pa", true)?.unwrap_or(f64::NAN),
             limiting_shear_coefficient: lsc,
         },
         _ => Rheology::Newtonian,
-    })
+    };
+    Ok((rheology, tables))
+}
+
+/// A rheology parameter given at several temperatures, `k = [[T (K), value], ...]`: None when
+/// the value is not an array. Temperatures positive and increasing, values positive.
+fn temperature_pairs(s: &Sec, k: &str, unit: &str) -> R<Option<TemperatureTable>> {
+    let Some(Value::Array(items)) = s.get(k) else {
+        return Ok(None);
+    };
+    let bad = |why: String| {
+        s.err(
+            k,
+            format!("{why}; a parameter that varies with temperature is given as [temperature K, value] pairs, e.g. {k} = [[313.0, 0.57], [373.0, 0.993]] ({unit})"),
+        )
+    };
+    let num = |v: &Value| match v {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    };
+    let mut pairs = Vec::with_capacity(items.len());
+    for (i, it) in items.iter().enumerate() {
+        let pair = match it {
+            Value::Array(a) if a.len() == 2 => (num(&a[0]), num(&a[1])),
+            other => return Err(bad(format!("entry {i} is {}, not a pair", describe(other)))),
+        };
+        let (Some(t), Some(v)) = pair else {
+            return Err(bad(format!("entry {i} is not a pair of numbers")));
+        };
+        if !(t > 0.0 && t.is_finite()) {
+            return Err(bad(format!("entry {i}: the temperature must be a positive number of K, found {}", fmt_num(t))));
+        }
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(bad(format!("entry {i}: the value must be positive and finite, found {}", fmt_num(v))));
+        }
+        if let Some(&(t0, _)) = pairs.last() {
+            if t <= t0 {
+                return Err(bad(format!("the temperatures must increase, found {} after {}", fmt_num(t), fmt_num(t0))));
+            }
+        }
+        pairs.push((t, v));
+    }
+    if pairs.is_empty() {
+        return Err(bad("the list is empty".into()));
+    }
+    Ok(Some(TemperatureTable(pairs)))
 }
 
 fn rheology_example(model: &str) -> &'static str {
@@ -1817,6 +1887,117 @@ fn fatigue(top: &Sec, has_stress: bool) -> R<Option<FatigueSpec>> {
     }))
 }
 
+/// `[thermal]` (optional, ehl only) with the bodies' thermal properties (`[body1]`, `[body2]`:
+/// conductivity, heat_capacity, density; steel by default). Rheology parameters given at several
+/// temperatures (`tables`) need it; with it, `lub.rheology` holds their values at the inlet
+/// temperature (what the isothermal parts of a run use).
+fn thermal(
+    top: &Sec,
+    lub: &mut Lubricant,
+    tables: RheologyTables,
+    transient: bool,
+) -> R<Option<ThermalSpec>> {
+    let Some(t) = sub(top, "thermal", "the temperature in the film and the bodies")? else {
+        if !tables.is_empty() {
+            let k = [
+                (tables.shear_modulus.is_some(), "shear_modulus"),
+                (tables.power_law_index.is_some(), "power_law_index"),
+                (tables.eyring_stress.is_some(), "eyring_stress"),
+                (tables.limiting_shear_coefficient.is_some(), "limiting_shear_coefficient"),
+            ]
+            .into_iter()
+            .find(|v| v.0)
+            .map_or("", |v| v.1);
+            return Err(case_err(
+                top.file,
+                &format!("lubricant.rheology.{k}"),
+                "a parameter given at several temperatures needs a [thermal] table (an isothermal run has one temperature: give one number)",
+            ));
+        }
+        return Ok(None);
+    };
+    let s = Sec {
+        file: top.file,
+        path: "thermal",
+        table: t,
+    };
+    if transient {
+        return Err(s.err(
+            "inlet_temperature",
+            "a thermal transient run (motion.travel with [thermal]) is not implemented yet: solve the thermal case steady (leave motion.travel out), or the transient one isothermal (leave [thermal] out)",
+        ));
+    }
+    let t0 = s.positive("inlet_temperature", "K")?.unwrap_or(313.0);
+    if t0 <= 138.0 + 1.0 {
+        return Err(s.err(
+            "inlet_temperature",
+            format!("{} K is at or below Roelands' pole of 138 K; give the inlet temperature in K (e.g. 313.0 for 40 degC)", fmt_num(t0)),
+        ));
+    }
+    let eta0 = lub.viscosity;
+    let vt = match (
+        s.non_negative("viscosity_temperature", "Roelands S0, dimensionless")?,
+        s.non_negative("viscosity_beta", "1/K")?,
+    ) {
+        (Some(_), Some(_)) => {
+            return Err(s.err(
+                "viscosity_beta",
+                "give the viscosity's temperature dependence once: viscosity_temperature (Roelands S0) or viscosity_beta (1/K), not both",
+            ))
+        }
+        (Some(s0), None) => ViscosityTemperature::from_s0(s0, eta0, t0),
+        (None, Some(b)) => ViscosityTemperature::from_beta(b, eta0, t0),
+        // S0 = 1.1, a typical mineral oil (Roelands 1966; Habchi et al. 2008)
+        (None, None) => ViscosityTemperature::from_s0(1.1, eta0, t0),
+    };
+    let thermal_expansion = s.non_negative("thermal_expansion", "1/K")?.unwrap_or(6.5e-4);
+    if thermal_expansion * 500.0 >= 1.0 {
+        return Err(s.err(
+            "thermal_expansion",
+            format!("{} 1/K would make the density vanish within 500 K of the inlet; oils expand by about 6.5e-4 1/K", fmt_num(thermal_expansion)),
+        ));
+    }
+    let conductivity = s.positive("conductivity", "W/(m K)")?.unwrap_or(0.14);
+    let heat_capacity = s.positive("heat_capacity", "J/(kg K)")?.unwrap_or(2000.0);
+    let points = s.count("points_across_film", "collocation points across the film", 3)?.unwrap_or(7);
+    if points > 33 {
+        return Err(s.err(
+            "points_across_film",
+            format!("{points} points across the film is more than 33; 5 to 9 carry the profile (see docs/thermal.md)"),
+        ));
+    }
+    let body = |name: &str| -> R<BodyThermal> {
+        let Some(bt) = top.get(name).and_then(|v| v.as_table()) else {
+            return Ok(BodyThermal::STEEL);
+        };
+        let b = Sec {
+            file: top.file,
+            path: if name == "body1" { "body1" } else { "body2" },
+            table: bt,
+        };
+        Ok(BodyThermal {
+            conductivity: b.positive("conductivity", "W/(m K)")?.unwrap_or(BodyThermal::STEEL.conductivity),
+            heat_capacity: b.positive("heat_capacity", "J/(kg K)")?.unwrap_or(BodyThermal::STEEL.heat_capacity),
+            density: b.positive("density", "kg/m^3")?.unwrap_or(BodyThermal::STEEL.density),
+        })
+    };
+    let bodies = [body("body1")?, body("body2")?];
+    let spec = ThermalLubricant {
+        inlet_temperature: t0,
+        viscosity_temperature: vt,
+        thermal_expansion,
+        conductivity,
+        heat_capacity,
+        points_across_film: points,
+        rheology: tables,
+    };
+    lub.rheology = spec.rheology.at(&lub.rheology, t0);
+    Ok(Some(ThermalSpec {
+        lubricant: spec,
+        bodies,
+    }))
+}
+
 /// Validates the whole tree (unknown keys already rejected) into a [`Case`].
 pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let top = Sec {
@@ -1857,9 +2038,9 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
                 return Err(top.missing(k, what));
             }
         }
-        let lub = lubricant(&top, e_red)?;
+        let (lub, tables) = lubricant(&top, e_red)?;
         let m = motion(&top, e_red, r, lub.viscosity)?;
-        (Some(m), Some(lub))
+        (Some(m), Some((lub, tables)))
     } else {
         // [motion] is ignored for a dry contact, but a travel asks for a transient run that a
         // dry contact does not have: refused rather than silently solved at one position
@@ -1877,6 +2058,22 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         (None, None)
     };
     let travel = motion.as_ref().and_then(|m| m.travel);
+    let (lubricant, thermal) = match lubricant {
+        Some((mut lub, tables)) => {
+            let th = thermal(&top, &mut lub, tables, travel.is_some())?;
+            (Some(lub), th)
+        }
+        None => {
+            if top.has("thermal") {
+                return Err(case_err(
+                    file,
+                    "thermal",
+                    "[thermal] is for kind = \"ehl\": a dry contact has no film to heat (the flash temperature of dry sliding is not modelled)",
+                ));
+            }
+            (None, None)
+        }
+    };
 
     let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
@@ -1923,6 +2120,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         output,
         stress,
         fatigue,
+        thermal,
     };
     let (limit, source) = crate::run::memory_limit();
     crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;

@@ -21,6 +21,9 @@ const BODY_KEYS: &[&str] = &[
     "profile.edge_length",
     "profile.edge_radius",
     "profile.angle",
+    "conductivity",
+    "heat_capacity",
+    "density",
 ];
 
 /// Every other valid key (tables included).
@@ -113,6 +116,14 @@ const OTHER_KEYS: &[&str] = &[
     "fatigue.dang_van",
     "fatigue.dang_van.alpha",
     "fatigue.dang_van.beta",
+    "thermal",
+    "thermal.inlet_temperature",
+    "thermal.viscosity_temperature",
+    "thermal.viscosity_beta",
+    "thermal.thermal_expansion",
+    "thermal.conductivity",
+    "thermal.heat_capacity",
+    "thermal.points_across_film",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

@@ -907,3 +907,67 @@ fn features_of_an_infinite_line_contact_are_uniform_along_y() {
     let c = parse(&(ROLLERS.to_string() + pit), &sets).unwrap();
     assert_eq!(c.features.len(), 1);
 }
+
+/// `[thermal]`: defaults (steel bodies, S0 = 1.1 giving beta by the thesis relation), the
+/// rheology given at two temperatures is evaluated at the inlet, and bad input names its key.
+#[test]
+fn thermal_table_defaults_and_errors() {
+    let carreau = r#"
+[lubricant.rheology]
+model = "carreau"
+shear_modulus = 4.5e6
+power_law_index = [[313.0, 0.57], [373.0, 0.993]]
+"#;
+    let text = format!("{EHL}{carreau}\n[thermal]\ninlet_temperature = 343.0\n");
+    let c = parse(&text, &[]).unwrap();
+    let th = c.thermal.as_ref().unwrap();
+    assert_eq!(th.bodies, [BodyThermal::STEEL; 2]);
+    assert_eq!(th.lubricant.points_across_film, 7);
+    let vt = th.lubricant.viscosity_temperature;
+    assert_eq!(vt.s0, 1.1);
+    assert!(close(vt.beta, 1.1 * (0.04f64.ln() + 9.67) / (343.0 - 138.0), 1e-12));
+    // n interpolated to the inlet temperature, halfway between 313 and 373 K
+    match c.lubricant.as_ref().unwrap().rheology {
+        Rheology::Carreau { power_law_index, .. } => {
+            assert!(close(power_law_index, 0.5 * (0.57 + 0.993), 1e-12))
+        }
+        ref r => panic!("{r:?}"),
+    }
+    // body properties and beta given
+    let c = parse(
+        &format!("{EHL}\n[thermal]\nviscosity_beta = 0.03\n"),
+        &["body1.conductivity=20.0", "body2.density=7000.0"],
+    )
+    .unwrap();
+    let th = c.thermal.unwrap();
+    assert_eq!(th.bodies[0].conductivity, 20.0);
+    assert_eq!(th.bodies[1].density, 7000.0);
+    assert_eq!(th.lubricant.viscosity_temperature.beta, 0.03);
+
+    let cases: &[(&str, &str, &str)] = &[
+        ("\n[thermal]\ninlet_temperature = 100.0\n", "thermal.inlet_temperature", "pole"),
+        ("\n[thermal]\nviscosity_beta = 0.03\nviscosity_temperature = 1.1\n", "thermal.viscosity_beta", "once"),
+        ("\n[thermal]\npoints_across_film = 2\n", "thermal.points_across_film", ""),
+        ("\n[thermal]\nconductivity = -1.0\n", "thermal.conductivity", ""),
+        ("\n[thermal]\nthermal_expansion = 0.01\n", "thermal.thermal_expansion", "vanish"),
+    ];
+    for (extra, key, word) in cases {
+        let (k, m) = err(&format!("{EHL}{extra}"), &[]);
+        assert_eq!(&k, key, "{m}");
+        assert!(m.contains(word), "{m}");
+    }
+    // pairs without [thermal], and bad pairs
+    let (k, m) = err(&format!("{EHL}{carreau}"), &[]);
+    assert_eq!(k, "lubricant.rheology.power_law_index");
+    assert!(m.contains("[thermal]"), "{m}");
+    let bad = carreau.replace("[[313.0, 0.57], [373.0, 0.993]]", "[[373.0, 0.57], [313.0, 0.993]]");
+    let (k, m) = err(&format!("{EHL}{bad}\n[thermal]\n"), &[]);
+    assert_eq!(k, "lubricant.rheology.power_law_index");
+    assert!(m.contains("increase"), "{m}");
+    let bad = carreau.replace("[[313.0, 0.57], [373.0, 0.993]]", "[[313.0, 0.57], [373.0, 1.5]]");
+    let (k, _) = err(&format!("{EHL}{bad}\n[thermal]\n"), &[]);
+    assert_eq!(k, "lubricant.rheology.power_law_index");
+    // a dry contact has no film to heat; a thermal transient is not built yet
+    let (k, _) = err(&format!("{ROLLERS}\n[thermal]\n"), &[]);
+    assert_eq!(k, "thermal");
+}

@@ -29,6 +29,7 @@
 //! Results are returned in SI.
 
 mod system;
+// pub mod thermal; (until the temperature model lands)
 pub mod transient;
 
 use crate::case::Lubricant;
@@ -195,6 +196,11 @@ pub enum Termination {
     },
     /// stopped from outside through [`crate::run::cancel`] (the result is thrown away)
     Cancelled,
+    /// thermal runs: every Newton solve converged, but the film temperature still changed by
+    /// `change_k` (K) over the last of `outer` fixed-point iterations
+    ThermalNotSettled { outer: usize, change_k: f64 },
+    /// thermal runs: the temperature solve failed (why)
+    ThermalFailed(String),
     /// the direct attempt failed and continuation in alpha stalled at `fraction` of alpha
     ContinuationStalled {
         first: Box<Termination>,
@@ -217,6 +223,11 @@ impl std::fmt::Display for Termination {
             Termination::MaxIterations(n) => write!(f, "no convergence in {n} Newton steps"),
             Termination::SingularPreconditioner => write!(f, "singular preconditioner"),
             Termination::Cancelled => write!(f, "cancelled"),
+            Termination::ThermalNotSettled { outer, change_k } => write!(
+                f,
+                "thermal fixed point not settled: the film temperature still changed by {change_k:.3} K after {outer} outer iterations"
+            ),
+            Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(
                 f,
                 "stalled at Newton step {step}: ||R|| {merit:.3e} unchanged over 8 steps"

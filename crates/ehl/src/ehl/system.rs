@@ -240,7 +240,28 @@ pub(crate) struct System {
     pub dense_extra: usize,
     /// dense factorisations so far
     pub dense_builds: usize,
+    /// thermal runs: the film's temperature as frozen per-cell factors (see [`ThermalFactors`])
+    pub thermal: Option<ThermalFactors>,
     scratch: Vec<f64>,
+}
+
+/// A thermal run's correction of the Reynolds coefficients, frozen during a Newton solve and
+/// updated between solves by the thermal driver (`super::thermal`). With the temperature and the
+/// effective viscosity varying across the film, the generalized Reynolds equation (Yang & Wen,
+/// J. Tribol. 112 (1990) 631) has the flow coefficient (rho/eta)_e h^3/12 and the Couette
+/// density rho*; per cell they are written against the isothermal laws at the inlet temperature
+/// and the current pressure:
+///
+/// * eps = rho(P) H^3 / (eta(P) lambda) * `flow[k]`, flow = (rho/eta)_e / (rho/eta)(p, T0);
+/// * the wedge's rho H = rho(P) H * `couette[k]`, couette = rho* / rho(p, T0).
+///
+/// Both factors are 1 for an isothermal Newtonian film. Held fixed, they leave the Jacobian
+/// product exact (rho and rho' scale alike), so Newton converges on the frozen problem and the
+/// driver's fixed point carries the coupling.
+#[derive(Debug, Clone)]
+pub(crate) struct ThermalFactors {
+    pub flow: Vec<f64>,
+    pub couette: Vec<f64>,
 }
 
 /// The wedge stencil of cell (i, j) on q = rho H of cells k, k-1, k-2 with the squeeze term's
@@ -318,6 +339,7 @@ impl System {
             dense_stale: false,
             dense_extra: 0,
             dense_builds: 0,
+            thermal: None,
             scratch: vec![0.0; n],
         }
     }
@@ -369,6 +391,11 @@ impl System {
         let phys = &self.phys;
         let h0 = st.h0;
         let nx = self.grid.nx;
+        let (flow, couette): (&[f64], &[f64]) = match &self.thermal {
+            Some(t) => (&t.flow, &t.couette),
+            None => (&[], &[]),
+        };
+        let thermal = self.thermal.is_some();
         (
             st.p.par_chunks_mut(nx),
             st.h.par_chunks_mut(nx),
@@ -382,7 +409,8 @@ impl System {
         )
             .into_par_iter()
             .with_min_len(min_len(nx))
-            .for_each(|(p, h, rho, eps, drho, dlneta, def, gap, active)| {
+            .enumerate()
+            .for_each(|(j, (p, h, rho, eps, drho, dlneta, def, gap, active))| {
                 for i in 0..p.len() {
                     if active[i] {
                         let pk = p[i];
@@ -393,6 +421,12 @@ impl System {
                         dlneta[i] = dl;
                         let hp = h[i].max(0.0);
                         eps[i] = rho[i] * hp * hp * hp / (eta * phys.lambda);
+                        if thermal {
+                            let k = j * nx + i;
+                            eps[i] *= flow[k];
+                            rho[i] *= couette[k];
+                            drho[i] *= couette[k];
+                        }
                     } else {
                         p[i] = 0.0;
                         h[i] = 0.0;

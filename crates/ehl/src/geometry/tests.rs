@@ -72,6 +72,7 @@ pub(crate) fn case(body1: Body, body2: Body, force: f64) -> Case {
         output: Default::default(),
         stress: None,
         fatigue: None,
+        thermal: None,
     }
 }
 

@@ -13,6 +13,7 @@
 
 pub mod density;
 pub mod rheology;
+pub mod temperature;
 pub mod viscosity;
 
 use serde::Serialize;

@@ -44,6 +44,7 @@ pub mod csv;
 pub mod npz;
 pub mod plot;
 pub mod stress;
+pub mod temperature;
 pub mod summary;
 pub mod synthetic;
 pub mod transient;
@@ -215,6 +216,7 @@ fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
     transient::write(tmp, case, solution)?;
     stress::write(tmp, case, solution)?;
+    temperature::write(tmp, solution)?;
     Ok(())
 }
 

@@ -58,6 +58,7 @@ fn base_case(title: &str, body1: Body, force: f64, per_length: f64, grid: GridSp
         output: Default::default(),
         stress: None,
         fatigue: None,
+        thermal: None,
     }
 }
 
@@ -156,6 +157,7 @@ pub fn dry_ball() -> (Case, Solution) {
         case,
         Solution {
             stress: None,
+            temperature: None,
             grid,
             fields,
             summary,
@@ -226,6 +228,7 @@ pub fn dry_roller() -> (Case, Solution) {
         case,
         Solution {
             stress: None,
+            temperature: None,
             grid,
             fields,
             summary,
@@ -284,6 +287,7 @@ pub fn dry_infinite_line() -> (Case, Solution) {
         case,
         Solution {
             stress: None,
+            temperature: None,
             grid,
             fields,
             summary,
@@ -386,6 +390,7 @@ pub fn ehl_ball(ny1: bool) -> (Case, Solution) {
         case,
         Solution {
             stress: None,
+            temperature: None,
             grid,
             fields: f,
             summary,

@@ -409,6 +409,7 @@ pub fn snapshot_solution(
         c,
         Solution {
             stress: None,
+            temperature: None,
             grid: g,
             fields: fields.clone(),
             summary,
@@ -554,6 +555,7 @@ pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
     summary.max_pressure_at_m = [sub.x(k % sub.nx), sub.y(k / sub.nx)];
     Some(Solution {
         stress: None,
+        temperature: None,
         grid: sub,
         fields,
         summary,
@@ -1367,6 +1369,7 @@ mod tests {
         let field: Vec<f64> = (0..g.len()).map(|k| k as f64).collect();
         let s = Solution {
             stress: None,
+            temperature: None,
             grid: g,
             fields: Fields {
                 pressure: field.clone(),

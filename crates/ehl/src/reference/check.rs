@@ -405,6 +405,7 @@ mod tests {
             output: Default::default(),
             stress: None,
             fatigue: None,
+            thermal: None,
         }
     }
 

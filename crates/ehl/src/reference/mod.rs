@@ -16,6 +16,7 @@ pub mod film;
 pub mod hertz;
 pub mod palmgren;
 pub mod subsurface;
+pub mod thermal;
 pub mod waviness;
 
 pub use check::{check_report, CheckReport};

@@ -357,6 +357,7 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
             summary.max_pressure_at_m = [grid.x(k % grid.nx), grid.y(k / grid.nx)];
             Solution {
                 stress: None,
+                temperature: None,
                 grid,
                 fields: Fields {
                     pressure: dry.pressure,
@@ -782,6 +783,7 @@ fn solve_ehl(
     }
     Ok(Solution {
         stress: None,
+        temperature: None,
         grid,
         fields: Fields {
             pressure: r.pressure,

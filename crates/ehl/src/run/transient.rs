@@ -408,6 +408,7 @@ pub(super) fn solve(
     summary.failed_steps = Some(failed_steps);
     Ok(Solution {
         stress: None,
+        temperature: None,
         grid,
         fields: fields_of(&last),
         summary,
