@@ -901,4 +901,265 @@ mod tests {
         // convergence: the finest error well below the coarsest
         assert!(c_last < 0.25 * errs[0].0 && m_last < 0.25 * errs[0].1, "{errs:?}");
     }
+
+    /// Infinite-Pe rise at x of a band of piecewise-constant flux (cells `[edges[c], edges[c+1]]`
+    /// carrying `q[c]`), material moving at `u` > 0: Duhamel's sum of (2 q / e) sqrt(t / pi)
+    /// (e = sqrt(k rho c)), t the time spent under each cell (Carslaw & Jaeger 1959 sec. 2.9).
+    fn high_pe_rise(x: f64, edges: &[f64], q: &[f64], u: f64) -> f64 {
+        let e = steel().effusivity();
+        let mut t = 0.0;
+        for (c, &qc) in q.iter().enumerate() {
+            let (lo, hi) = (edges[c], edges[c + 1]);
+            if x > lo {
+                let s = (x - lo).sqrt() - (x - hi).max(0.0).sqrt();
+                t += 2.0 * qc / e * s / (PI * u).sqrt();
+            }
+        }
+        t
+    }
+
+    /// Line grid on [-1.5 a, 2.5 a] with `nb` cells on the band [-a, a]; returns the grid and
+    /// the indices of the band cells.
+    fn band_grid(a: f64, nb: usize) -> (Grid, std::ops::Range<usize>) {
+        let n = 2 * nb;
+        let g = Grid::new(n, 1, -1.5 * a, 2.5 * a, 0.0, 1.0);
+        (g, nb / 4..nb / 4 + nb)
+    }
+
+    #[test]
+    fn uniform_band_high_peclet() {
+        // Uniform flux q on |x| <= a, line contact. As Pe -> inf a point that has spent the
+        // time t = (x + a) / U under the source rises by (2 q / k) sqrt(kappa t / pi), which
+        // at the trailing edge is (2 / sqrt(pi)) q a / (k sqrt(Pe)). The band is cell-aligned,
+        // so the solver's field is the exact finite-Pe field at the cell centres (dx = a / 100).
+        // Measured: the maximum sits a distance ~0.6 a / Pe = 1.2 kappa / U upstream of the
+        // trailing edge (conduction along x) and its gap to 2 / sqrt(pi) is 4.0, 2.3, 1.35,
+        // 0.77, 0.43, 0.32 % for Pe = 5 ... 160: it falls by 1.7-1.8 per doubling of Pe
+        // (~Pe^-0.8, not quite the O(1/Pe) of the brief; the last value is limited by the
+        // sampling at a - dx/2, where the Pe -> inf rise is already 0.13 % below 2/sqrt(pi)).
+        // Asserted: the max within 1.5 a / Pe + dx of the trailing edge, its gap below 2 % at
+        // Pe = 20, and a fall by a factor in [1.4, 2.2] per doubling up to Pe = 80.
+        let (a, q) = (1e-4, 1e9);
+        let nb = 200;
+        let (grid, band) = band_grid(a, nb);
+        let flux: Vec<f64> = (0..grid.nx).map(|i| if band.contains(&i) { q } else { 0.0 }).collect();
+        let last = band.end - 1;
+        let mut gaps = Vec::new();
+        for pe in [5.0, 10.0, 20.0, 40.0, 80.0, 160.0] {
+            let u = speed_for(pe, a);
+            let mut op = MovingHalfSpace::new(&grid, steel(), u).unwrap();
+            assert!((op.peclet(a) - pe).abs() < 1e-12 * pe);
+            let mut t = vec![0.0; grid.len()];
+            op.temperature_rise(&flux, &mut t);
+            let x = grid.x(last);
+            let exact_inf = 2.0 * q / steel().conductivity
+                * (steel().diffusivity() * (x + a) / (PI * u)).sqrt();
+            let gap = t[last] / exact_inf - 1.0;
+            let imax = (0..grid.nx).max_by(|&i, &j| t[i].total_cmp(&t[j])).unwrap();
+            let scale = q * a / (steel().conductivity * pe.sqrt());
+            eprintln!(
+                "band Pe {pe}: T(last cell) sqrt(Pe) k/(q a) = {:.5} (Pe->inf {:.5}, 2/sqrt(pi) = {:.5} at x = a), gap {gap:.3e}, max at cell {imax} (last band cell {last}), max {:.5}",
+                t[last] / scale,
+                exact_inf / scale,
+                2.0 / PI.sqrt(),
+                t[imax] / scale
+            );
+            let max_gap = 1.0 - t[imax] / scale / (2.0 / PI.sqrt());
+            gaps.push(max_gap);
+            let shift = a - grid.x(imax);
+            assert!(shift.abs() < 1.5 * a / pe + grid.dx, "Pe {pe}: max {shift:e} before the edge");
+            assert!(gap < 0.0 && max_gap > 0.0, "the finite-Pe rise is below the 1D limit");
+        }
+        eprintln!("band: gaps of the max {gaps:?}");
+        assert!(gaps[2] < 0.02, "{gaps:?}");
+        for w in gaps[..5].windows(2) {
+            let r = w[0] / w[1];
+            assert!((1.4..2.2).contains(&r), "{gaps:?}");
+        }
+    }
+
+    #[test]
+    fn long_strip_matches_line() {
+        // A 3D strip |x| <= a, |y| <= 4a at Pe = 20: seen from its centre line, the missing parts
+        // |y| > 4a of an infinite strip are attenuated by exp(-lambda (r - x)) <=
+        // exp(-Pe (sqrt(32) - 4)) ~ 1e-15 (downstream) or less, so the centre row must equal the
+        // line solution: 1e-9 of the maximum tests the 3D and 2D kernels against each other
+        // (independent quadratures) and the y-integral of the point source.
+        let (a, q, pe) = (1e-4, 1e9, 20.0);
+        let nb = 40;
+        let (g1, band) = band_grid(a, nb);
+        let ny = 17;
+        let g2 = Grid::new(g1.nx, ny, g1.x_min, g1.x_max(), -4.0 * a, 4.0 * a);
+        let u = speed_for(pe, a);
+        let f1: Vec<f64> = (0..g1.nx).map(|i| if band.contains(&i) { q } else { 0.0 }).collect();
+        let f2: Vec<f64> = (0..g2.len()).map(|c| f1[c % g2.nx]).collect();
+        let (mut t1, mut t2) = (vec![0.0; g1.len()], vec![0.0; g2.len()]);
+        MovingHalfSpace::new(&g1, steel(), u).unwrap().temperature_rise(&f1, &mut t1);
+        MovingHalfSpace::new(&g2, steel(), u).unwrap().temperature_rise(&f2, &mut t2);
+        let tmax = t1.iter().cloned().fold(0.0, f64::max);
+        let row = &t2[(ny / 2) * g2.nx..(ny / 2 + 1) * g2.nx];
+        let err = row.iter().zip(&t1).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / tmax;
+        eprintln!("strip centre row vs line: {err:.2e} of max");
+        assert!(err < 1e-9, "{err:e}");
+    }
+
+    /// I(X) = int_{-1}^{X} sqrt(1 - S^2) / sqrt(X - S) dS, by S = X - u^2,
+    /// u = sqrt(1 + X) sin(p): I = 2 (1 + X) int_0^{pi/2} sqrt(1 - X + u^2) cos^2 p dp
+    /// (smooth integrand, 40-point Gauss to round-off).
+    fn semi_ellipse_integral(x: f64) -> f64 {
+        let rule = GaussRule::new(40);
+        let f = |p: f64| {
+            let u2 = (1.0 + x) * p.sin().powi(2);
+            (1.0 - x + u2).sqrt() * p.cos().powi(2)
+        };
+        2.0 * (1.0 + x) * rule.fixed(&f, 0.0, 0.5 * PI)
+    }
+
+    #[test]
+    fn hertzian_band_high_peclet() {
+        // Flux q0 sqrt(1 - x^2/a^2) on |x| <= a. At Pe -> inf, Duhamel gives
+        // T(x) = (q0 / k) sqrt(kappa a / (pi U)) I(x / a) = (q0 a / (k sqrt(Pe))) I / sqrt(2 pi).
+        // thermal.md quotes the maximum as 2.19 at x = 0.65 a [derived]: verified here as
+        // max I = 2.19 at X = 0.65 (to the 3 digits quoted), i.e. T_max =
+        // 2.19 / sqrt(2 pi) = 0.874 q0 a / (k sqrt(Pe)) -- *not* 2.19 q0 a / (k sqrt Pe) as
+        // written there (the uniform band check I(1) = 2 sqrt(2) -> 1.128 fixes the factor).
+        // 2.19 is Blok's 1.11 = 2 sqrt(2) max I / pi^1.5.
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..100 {
+            // golden section for the maximum
+            let m1 = hi - 0.618_033_988_749_895 * (hi - lo);
+            let m2 = lo + 0.618_033_988_749_895 * (hi - lo);
+            if semi_ellipse_integral(m1) < semi_ellipse_integral(m2) {
+                lo = m1;
+            } else {
+                hi = m2;
+            }
+        }
+        let (xm, im) = (0.5 * (lo + hi), semi_ellipse_integral(0.5 * (lo + hi)));
+        let blok = 2.0 * 2f64.sqrt() * im / PI.powf(1.5);
+        eprintln!("semi-ellipse: max I = {im:.5} at X = {xm:.4}; / sqrt(2 pi) = {:.5}; Blok {blok:.4}", im / (2.0 * PI).sqrt());
+        assert!((im - 2.19).abs() < 0.005 && (xm - 0.65).abs() < 0.005, "{im} {xm}");
+        assert!((blok - 1.11).abs() < 0.005);
+        // the quadrature itself: uniform-flux limit of the same substitution is I(1) = 4 sqrt(2)/3
+        assert!((semi_ellipse_integral(1.0) - 4.0 * 2f64.sqrt() / 3.0).abs() < 1e-12);
+
+        // The solver with the cell averages of the flux (exact: F(X) = (X sqrt(1-X^2) + asin X)/2)
+        // against the infinite-Pe rise of the *same* cell fluxes at the hottest cell. For this
+        // smooth flux the finite-Pe correction is far smaller than for the uniform band:
+        // measured gaps 5.0e-4, 5.9e-5, 2.3e-5, 1.6e-5, 9.8e-6 at Pe = 10 ... 160. Asserted:
+        // below 1e-3 for all, below 1e-4 from Pe = 20 on, shrinking overall (last < first / 10);
+        // from Pe = 20 on the hottest cell within 0.03 a of the X of max I (measured 0.015 a
+        // at Pe = 20; the cells are 0.005 a) and its value within 1e-3 of max I / sqrt(2 pi).
+        let (a, q0) = (1e-4, 1e9);
+        let nb = 400;
+        let (grid, band) = band_grid(a, nb);
+        let prim = |x: f64| {
+            let x = x.clamp(-1.0, 1.0);
+            0.5 * (x * (1.0 - x * x).sqrt() + x.asin())
+        };
+        let flux: Vec<f64> = (0..grid.nx)
+            .map(|i| {
+                if !band.contains(&i) {
+                    return 0.0;
+                }
+                let (x0, x1) = ((grid.x(i) - 0.5 * grid.dx) / a, (grid.x(i) + 0.5 * grid.dx) / a);
+                q0 * (prim(x1) - prim(x0)) / (x1 - x0)
+            })
+            .collect();
+        let edges: Vec<f64> = (band.start..=band.end).map(|i| grid.x_min + i as f64 * grid.dx).collect();
+        let qb = &flux[band.clone()];
+        let mut gaps = Vec::new();
+        for pe in [10.0, 20.0, 40.0, 80.0, 160.0] {
+            let u = speed_for(pe, a);
+            let mut op = MovingHalfSpace::new(&grid, steel(), u).unwrap();
+            let mut t = vec![0.0; grid.len()];
+            op.temperature_rise(&flux, &mut t);
+            let imax = (0..grid.nx).max_by(|&i, &j| t[i].total_cmp(&t[j])).unwrap();
+            let inf = high_pe_rise(grid.x(imax), &edges, qb, u);
+            let scale = q0 * a / (steel().conductivity * pe.sqrt());
+            let gap = t[imax] / inf - 1.0;
+            eprintln!(
+                "hertzian Pe {pe}: max {:.5} at x/a = {:.4}, Pe->inf there {:.5}, gap {gap:.3e}",
+                t[imax] / scale,
+                grid.x(imax) / a,
+                inf / scale
+            );
+            gaps.push(gap.abs());
+            assert!(gap.abs() < if pe >= 20.0 { 1e-4 } else { 1e-3 }, "Pe {pe}: {gap:e}");
+            if pe >= 20.0 {
+                assert!((grid.x(imax) / a - xm).abs() < 0.03, "max at {}", grid.x(imax) / a);
+                assert!((t[imax] / scale / (im / (2.0 * PI).sqrt()) - 1.0).abs() < 1e-3);
+            }
+        }
+        assert!(gaps[gaps.len() - 1] < 0.1 * gaps[0], "{gaps:?}");
+    }
+
+    #[test]
+    fn moving_disc_high_peclet() {
+        // Uniform flux q on a disc of radius a. At Pe -> inf each row y heats like a band of
+        // length 2 sqrt(a^2 - y^2): max (2 / sqrt(pi)) q a / (k sqrt(Pe)) = 1.128 at the trailing
+        // edge, mean (over the disc) (8 sqrt(2) / (3 pi sqrt(2 pi))) B(1/2, 7/4) = 0.6886
+        // (thermal.md: 1.128 and 0.689 [derived], verified here by quadrature of
+        // B(1/2, 7/4) = int_{-1}^{1} (1 - u^2)^{3/4} du). The solver on the staircase disc is
+        // compared with the infinite-Pe rise of the same staircase (each row heated from its
+        // first cell's leading edge; 1.1240 and 0.6892 on this 64-cell staircase, 4e-3 and
+        // 9e-4 from the disc values). The gaps are finite-Pe corrections; measured for the mean
+        // 2.3, 1.1, 0.57, 0.28 % at Pe = 10, 20, 40, 80 (halving: O(1/Pe)), for the max 4.7,
+        // 2.2, 1.1, 0.28 % (the last helped by the sampling at a cell centre). Asserted: both
+        // decrease with Pe, both below 1 % at Pe = 80, the mean's gap falls by [1.6, 2.4] per
+        // doubling.
+        let rule = GaussRule::new(40);
+        let beta = 2.0 * (0..64)
+            .map(|i| {
+                let (p0, p1) = (i as f64 / 64.0 * 0.5 * PI, (i + 1) as f64 / 64.0 * 0.5 * PI);
+                rule.fixed(&|p: f64| p.cos().powf(2.5), p0, p1)
+            })
+            .sum::<f64>();
+        let mean_inf = 8.0 * 2f64.sqrt() / (3.0 * PI * (2.0 * PI).sqrt()) * beta;
+        eprintln!("disc Pe->inf: mean {mean_inf:.5}, max {:.5}", 2.0 / PI.sqrt());
+        assert!((mean_inf - 0.689).abs() < 5e-4 && (2.0 / PI.sqrt() - 1.128).abs() < 5e-4);
+
+        let (a, q) = (1e-4, 1e9);
+        let m = 64;
+        let grid = Grid::new(m, m, -a, a, -a, a);
+        let mask = disc_mask(&grid, a);
+        let flux: Vec<f64> = mask.iter().map(|&i| if i { q } else { 0.0 }).collect();
+        let mut prev = (f64::INFINITY, f64::INFINITY);
+        for pe in [10.0, 20.0, 40.0, 80.0] {
+            let u = speed_for(pe, a);
+            let mut op = MovingHalfSpace::new(&grid, steel(), u).unwrap();
+            let mut t = vec![0.0; grid.len()];
+            op.temperature_rise(&flux, &mut t);
+            let scale = q * a / (steel().conductivity * pe.sqrt());
+            let (mut smax, mut imax, mut ssum, mut isum, mut n) = (0.0f64, 0.0f64, 0.0, 0.0, 0);
+            for j in 0..m {
+                let row = &mask[j * m..(j + 1) * m];
+                let Some(i0) = row.iter().position(|&b| b) else { continue };
+                let i1 = row.iter().rposition(|&b| b).unwrap();
+                let edges = [grid.x_min + i0 as f64 * grid.dx, grid.x_min + (i1 + 1) as f64 * grid.dx];
+                for i in i0..=i1 {
+                    let inf = high_pe_rise(grid.x(i), &edges, &[q], u) / scale;
+                    let s = t[grid.idx(i, j)] / scale;
+                    smax = smax.max(s);
+                    imax = imax.max(inf);
+                    ssum += s;
+                    isum += inf;
+                    n += 1;
+                }
+            }
+            let (gmax, gmean) = (smax / imax - 1.0, ssum / isum - 1.0);
+            eprintln!(
+                "disc Pe {pe}: max {smax:.4} (staircase Pe->inf {imax:.4}, gap {gmax:.3e}), mean {:.4} (staircase Pe->inf {:.4}, gap {gmean:.3e})",
+                ssum / n as f64,
+                isum / n as f64
+            );
+            assert!(gmax.abs() < prev.0 && gmean.abs() < prev.1, "Pe {pe}");
+            if prev.1.is_finite() {
+                let r = prev.1 / gmean.abs();
+                assert!((1.6..2.4).contains(&r), "Pe {pe}: mean gap ratio {r}");
+            }
+            prev = (gmax.abs(), gmean.abs());
+        }
+        assert!(prev.0 < 0.01 && prev.1 < 0.01, "{prev:?}");
+    }
 }
