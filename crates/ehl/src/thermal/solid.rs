@@ -187,8 +187,16 @@ impl MovingHalfSpace {
     /// Temperature rise (K) above the bulk at every cell centre for the cell fluxes `flux`
     /// (W/m^2, positive into the body), both `nx * ny` row-major. Allocates nothing.
     pub fn temperature_rise(&mut self, flux: &[f64], out: &mut [f64]) {
-        assert_eq!(flux.len(), self.grid.len(), "flux must have one value per cell");
-        assert_eq!(out.len(), self.grid.len(), "out must have one value per cell");
+        assert_eq!(
+            flux.len(),
+            self.grid.len(),
+            "flux must have one value per cell"
+        );
+        assert_eq!(
+            out.len(),
+            self.grid.len(),
+            "out must have one value per cell"
+        );
         self.conv.apply(flux, out);
     }
 
@@ -276,6 +284,7 @@ fn coefficient_table(grid: &Grid, props: &SolidThermal, speed: f64, tol: f64) ->
 
 /// 3D coefficient (K m^2/W): the integral of G over the rectangle |x'| <= a, |y'| <= b seen from
 /// the point (x, y) (offset target - source centre); `lambda` = |U| / (2 kappa), `sign` = sign U.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn cell_coefficient(
     x: f64,
     y: f64,
@@ -546,10 +555,10 @@ impl GaussRule {
         if depth == 0 || (l + r - whole).abs() <= tol {
             return l + r;
         }
-        self.refine(f, a, m, l, 0.5 * tol, depth - 1) + self.refine(f, m, b, r, 0.5 * tol, depth - 1)
+        self.refine(f, a, m, l, 0.5 * tol, depth - 1)
+            + self.refine(f, m, b, r, 0.5 * tol, depth - 1)
     }
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -567,7 +576,9 @@ mod tests {
 
     /// Deterministic pseudo-random fluxes in [0, 1).
     fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
-        let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let mut s = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (0..n)
             .map(|_| {
                 s = s
@@ -827,7 +838,10 @@ mod tests {
                         comp(&g, x - a, x + a, 100)
                     };
                     let err = (c - brute).abs() / c0.abs();
-                    assert!(err < 1e-9, "lambda {lambda} sign {sign} di {di}: {c} vs {brute}: {err:e}");
+                    assert!(
+                        err < 1e-9,
+                        "lambda {lambda} sign {sign} di {di}: {c} vs {brute}: {err:e}"
+                    );
                 }
             }
         }
@@ -844,7 +858,10 @@ mod tests {
         p.density = -1.0;
         assert!(matches!(
             MovingHalfSpace::new(&g1, p, 1.0),
-            Err(SolidError::InvalidProperty { name: "density", .. })
+            Err(SolidError::InvalidProperty {
+                name: "density",
+                ..
+            })
         ));
         assert!(matches!(
             MovingHalfSpace::new(&g1, steel(), f64::NAN),
@@ -893,13 +910,18 @@ mod tests {
                 .fold((0.0, 0), |(s, n), (v, _)| (s + v, n + 1));
             let mean = sum / n as f64 * k / (q * a);
             let (ec, em) = (centre - 1.0, mean / (8.0 / (3.0 * PI)) - 1.0);
-            eprintln!("stationary disc m = {m}: centre {centre:.6} ({ec:.2e}), mean {mean:.6} ({em:.2e})");
+            eprintln!(
+                "stationary disc m = {m}: centre {centre:.6} ({ec:.2e}), mean {mean:.6} ({em:.2e})"
+            );
             errs.push((ec.abs(), em.abs()));
         }
         let (c_last, m_last) = errs[errs.len() - 1];
         assert!(c_last < 1e-3 && m_last < 1e-3, "{errs:?}");
         // convergence: the finest error well below the coarsest
-        assert!(c_last < 0.25 * errs[0].0 && m_last < 0.25 * errs[0].1, "{errs:?}");
+        assert!(
+            c_last < 0.25 * errs[0].0 && m_last < 0.25 * errs[0].1,
+            "{errs:?}"
+        );
     }
 
     /// Infinite-Pe rise at x of a band of piecewise-constant flux (cells `[edges[c], edges[c+1]]`
@@ -942,7 +964,9 @@ mod tests {
         let (a, q) = (1e-4, 1e9);
         let nb = 200;
         let (grid, band) = band_grid(a, nb);
-        let flux: Vec<f64> = (0..grid.nx).map(|i| if band.contains(&i) { q } else { 0.0 }).collect();
+        let flux: Vec<f64> = (0..grid.nx)
+            .map(|i| if band.contains(&i) { q } else { 0.0 })
+            .collect();
         let last = band.end - 1;
         let mut gaps = Vec::new();
         for pe in [5.0, 10.0, 20.0, 40.0, 80.0, 160.0] {
@@ -967,8 +991,14 @@ mod tests {
             let max_gap = 1.0 - t[imax] / scale / (2.0 / PI.sqrt());
             gaps.push(max_gap);
             let shift = a - grid.x(imax);
-            assert!(shift.abs() < 1.5 * a / pe + grid.dx, "Pe {pe}: max {shift:e} before the edge");
-            assert!(gap < 0.0 && max_gap > 0.0, "the finite-Pe rise is below the 1D limit");
+            assert!(
+                shift.abs() < 1.5 * a / pe + grid.dx,
+                "Pe {pe}: max {shift:e} before the edge"
+            );
+            assert!(
+                gap < 0.0 && max_gap > 0.0,
+                "the finite-Pe rise is below the 1D limit"
+            );
         }
         eprintln!("band: gaps of the max {gaps:?}");
         assert!(gaps[2] < 0.02, "{gaps:?}");
@@ -991,14 +1021,25 @@ mod tests {
         let ny = 17;
         let g2 = Grid::new(g1.nx, ny, g1.x_min, g1.x_max(), -4.0 * a, 4.0 * a);
         let u = speed_for(pe, a);
-        let f1: Vec<f64> = (0..g1.nx).map(|i| if band.contains(&i) { q } else { 0.0 }).collect();
+        let f1: Vec<f64> = (0..g1.nx)
+            .map(|i| if band.contains(&i) { q } else { 0.0 })
+            .collect();
         let f2: Vec<f64> = (0..g2.len()).map(|c| f1[c % g2.nx]).collect();
         let (mut t1, mut t2) = (vec![0.0; g1.len()], vec![0.0; g2.len()]);
-        MovingHalfSpace::new(&g1, steel(), u).unwrap().temperature_rise(&f1, &mut t1);
-        MovingHalfSpace::new(&g2, steel(), u).unwrap().temperature_rise(&f2, &mut t2);
+        MovingHalfSpace::new(&g1, steel(), u)
+            .unwrap()
+            .temperature_rise(&f1, &mut t1);
+        MovingHalfSpace::new(&g2, steel(), u)
+            .unwrap()
+            .temperature_rise(&f2, &mut t2);
         let tmax = t1.iter().cloned().fold(0.0, f64::max);
         let row = &t2[(ny / 2) * g2.nx..(ny / 2 + 1) * g2.nx];
-        let err = row.iter().zip(&t1).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / tmax;
+        let err = row
+            .iter()
+            .zip(&t1)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / tmax;
         eprintln!("strip centre row vs line: {err:.2e} of max");
         assert!(err < 1e-9, "{err:e}");
     }
@@ -1037,8 +1078,14 @@ mod tests {
         }
         let (xm, im) = (0.5 * (lo + hi), semi_ellipse_integral(0.5 * (lo + hi)));
         let blok = 2.0 * 2f64.sqrt() * im / PI.powf(1.5);
-        eprintln!("semi-ellipse: max I = {im:.5} at X = {xm:.4}; / sqrt(2 pi) = {:.5}; Blok {blok:.4}", im / (2.0 * PI).sqrt());
-        assert!((im - 2.19).abs() < 0.005 && (xm - 0.65).abs() < 0.005, "{im} {xm}");
+        eprintln!(
+            "semi-ellipse: max I = {im:.5} at X = {xm:.4}; / sqrt(2 pi) = {:.5}; Blok {blok:.4}",
+            im / (2.0 * PI).sqrt()
+        );
+        assert!(
+            (im - 2.19).abs() < 0.005 && (xm - 0.65).abs() < 0.005,
+            "{im} {xm}"
+        );
         assert!((blok - 1.11).abs() < 0.005);
         // the quadrature itself: uniform-flux limit of the same substitution is I(1) = 4 sqrt(2)/3
         assert!((semi_ellipse_integral(1.0) - 4.0 * 2f64.sqrt() / 3.0).abs() < 1e-12);
@@ -1062,11 +1109,16 @@ mod tests {
                 if !band.contains(&i) {
                     return 0.0;
                 }
-                let (x0, x1) = ((grid.x(i) - 0.5 * grid.dx) / a, (grid.x(i) + 0.5 * grid.dx) / a);
+                let (x0, x1) = (
+                    (grid.x(i) - 0.5 * grid.dx) / a,
+                    (grid.x(i) + 0.5 * grid.dx) / a,
+                );
                 q0 * (prim(x1) - prim(x0)) / (x1 - x0)
             })
             .collect();
-        let edges: Vec<f64> = (band.start..=band.end).map(|i| grid.x_min + i as f64 * grid.dx).collect();
+        let edges: Vec<f64> = (band.start..=band.end)
+            .map(|i| grid.x_min + i as f64 * grid.dx)
+            .collect();
         let qb = &flux[band.clone()];
         let mut gaps = Vec::new();
         for pe in [10.0, 20.0, 40.0, 80.0, 160.0] {
@@ -1085,9 +1137,16 @@ mod tests {
                 inf / scale
             );
             gaps.push(gap.abs());
-            assert!(gap.abs() < if pe >= 20.0 { 1e-4 } else { 1e-3 }, "Pe {pe}: {gap:e}");
+            assert!(
+                gap.abs() < if pe >= 20.0 { 1e-4 } else { 1e-3 },
+                "Pe {pe}: {gap:e}"
+            );
             if pe >= 20.0 {
-                assert!((grid.x(imax) / a - xm).abs() < 0.03, "max at {}", grid.x(imax) / a);
+                assert!(
+                    (grid.x(imax) / a - xm).abs() < 0.03,
+                    "max at {}",
+                    grid.x(imax) / a
+                );
                 assert!((t[imax] / scale / (im / (2.0 * PI).sqrt()) - 1.0).abs() < 1e-3);
             }
         }
@@ -1109,14 +1168,18 @@ mod tests {
         // decrease with Pe, both below 1 % at Pe = 80, the mean's gap falls by [1.6, 2.4] per
         // doubling.
         let rule = GaussRule::new(40);
-        let beta = 2.0 * (0..64)
-            .map(|i| {
-                let (p0, p1) = (i as f64 / 64.0 * 0.5 * PI, (i + 1) as f64 / 64.0 * 0.5 * PI);
-                rule.fixed(&|p: f64| p.cos().powf(2.5), p0, p1)
-            })
-            .sum::<f64>();
+        let beta = 2.0
+            * (0..64)
+                .map(|i| {
+                    let (p0, p1) = (i as f64 / 64.0 * 0.5 * PI, (i + 1) as f64 / 64.0 * 0.5 * PI);
+                    rule.fixed(&|p: f64| p.cos().powf(2.5), p0, p1)
+                })
+                .sum::<f64>();
         let mean_inf = 8.0 * 2f64.sqrt() / (3.0 * PI * (2.0 * PI).sqrt()) * beta;
-        eprintln!("disc Pe->inf: mean {mean_inf:.5}, max {:.5}", 2.0 / PI.sqrt());
+        eprintln!(
+            "disc Pe->inf: mean {mean_inf:.5}, max {:.5}",
+            2.0 / PI.sqrt()
+        );
         assert!((mean_inf - 0.689).abs() < 5e-4 && (2.0 / PI.sqrt() - 1.128).abs() < 5e-4);
 
         let (a, q) = (1e-4, 1e9);
@@ -1134,9 +1197,14 @@ mod tests {
             let (mut smax, mut imax, mut ssum, mut isum, mut n) = (0.0f64, 0.0f64, 0.0, 0.0, 0);
             for j in 0..m {
                 let row = &mask[j * m..(j + 1) * m];
-                let Some(i0) = row.iter().position(|&b| b) else { continue };
+                let Some(i0) = row.iter().position(|&b| b) else {
+                    continue;
+                };
                 let i1 = row.iter().rposition(|&b| b).unwrap();
-                let edges = [grid.x_min + i0 as f64 * grid.dx, grid.x_min + (i1 + 1) as f64 * grid.dx];
+                let edges = [
+                    grid.x_min + i0 as f64 * grid.dx,
+                    grid.x_min + (i1 + 1) as f64 * grid.dx,
+                ];
                 for i in i0..=i1 {
                     let inf = high_pe_rise(grid.x(i), &edges, &[q], u) / scale;
                     let s = t[grid.idx(i, j)] / scale;
