@@ -275,6 +275,41 @@ impl Convolver {
     }
 }
 
+/// A zero-padded FFT convolution with one kernel given on the cell offsets, for other operators
+/// of the crate that convolve a cell field with a translation-invariant (not necessarily
+/// symmetric) kernel, e.g. [`crate::thermal::solid`]. A thin wrapper around the elastic
+/// operator's convolver (same plans, same speed).
+///
+/// Convention: `out[j nx + i] = sum_(i', j') k(i - i', j - j') input[j' nx + i']`, the offset
+/// being *target minus source*; `k` is sampled for |di| < nx, |dj| < ny. Clones share the plans
+/// and the kernel spectrum and get their own scratch.
+#[derive(Clone)]
+pub(crate) struct KernelConvolution {
+    conv: Convolver,
+}
+
+impl KernelConvolution {
+    /// Plans the transforms for an `nx * ny` grid and takes the spectrum of `k(di, dj)`.
+    pub(crate) fn new(nx: usize, ny: usize, k: &(dyn Fn(isize, isize) -> f64 + Sync)) -> Self {
+        let mut conv = Convolver::new(nx, ny);
+        conv.direct = Arc::new(conv.kernel_spectrum(k));
+        KernelConvolution { conv }
+    }
+
+    /// `out = k * input` (both `nx * ny`, row-major); allocates nothing.
+    pub(crate) fn apply(&mut self, input: &[f64], out: &mut [f64]) {
+        let n = self.conv.nx * self.conv.ny;
+        assert_eq!(input.len(), n);
+        assert_eq!(out.len(), n);
+        self.conv.convolve(input, out);
+    }
+
+    /// Padded FFT sizes (px, py).
+    pub(crate) fn padded_size(&self) -> (usize, usize) {
+        (self.conv.px, self.conv.py)
+    }
+}
+
 /// The offset stored at index `i` of a circular (padded) kernel of length `p` for a grid of `n`
 /// cells: i for i < n, i - p for the last n - 1 entries, None in the zero padding between.
 fn wrapped_offset(i: usize, n: usize, p: usize) -> Option<isize> {
