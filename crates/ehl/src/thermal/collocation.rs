@@ -220,7 +220,10 @@ mod tests {
             // quadrature, degree <= 2 nz - 3
             for p in 0..=(2 * nz as i32 - 3) {
                 let q = r.integrate(&mono(&r, p));
-                assert!((q - 1.0 / (p + 1) as f64).abs() < 1e-14, "nz {nz} p {p}: {q}");
+                assert!(
+                    (q - 1.0 / (p + 1) as f64).abs() < 1e-14,
+                    "nz {nz} p {p}: {q}"
+                );
             }
             // and not beyond (the rule's degree is what it claims): a test that can fail
             // (2 zeta - 1)^p, p even, integrates to 1 / (p + 1); (x^p on [-1, 1], whose Lobatto
@@ -229,13 +232,20 @@ mod tests {
             let p = 2 * nz as i32 - 2;
             let f: Vec<f64> = r.points.iter().map(|z| (2.0 * z - 1.0).powi(p)).collect();
             let q = r.integrate(&f);
-            assert!((q - 1.0 / (p + 1) as f64).abs() > 1e-10, "nz {nz}: degree too high?");
+            assert!(
+                (q - 1.0 / (p + 1) as f64).abs() > 1e-10,
+                "nz {nz}: degree too high?"
+            );
             let mut out = vec![0.0; nz];
             for p in 0..nz as i32 {
                 let f = mono(&r, p);
                 r.apply(&r.d1, &f, &mut out);
                 for (k, z) in r.points.iter().enumerate() {
-                    let exact = if p == 0 { 0.0 } else { p as f64 * z.powi(p - 1) };
+                    let exact = if p == 0 {
+                        0.0
+                    } else {
+                        p as f64 * z.powi(p - 1)
+                    };
                     assert!((out[k] - exact).abs() < 1e-11 * scale, "D1 nz {nz} p {p}");
                 }
                 r.apply(&r.d2, &f, &mut out);
