@@ -1,1 +1,715 @@
-//! The energy equation across the film and the generalized Reynolds coefficients (to be built).
+//! The film across z: the velocity profile of a film whose viscosity and density vary across
+//! the film, the generalized Reynolds coefficients (Yang & Wen 1990, J. Tribol. 112: 631-636)
+//! and the energy equation along a grid line, with collocation across z
+//! ([`super::collocation::Lobatto`]).
+//!
+//! # Geometry, units and signs
+//!
+//! SI units, temperatures in K. Surface 1 is at z = 0 and moves at `u1` along +x, surface 2 at
+//! z = h and moves at `u2`; zeta = z / h in [0, 1]. Neither surface moves along y.
+//!
+//! # Velocity profile (generalized Newtonian film)
+//!
+//! With the thin-film momentum equations d tau_zx / dz = dp/dx, d tau_zy / dz = dp/dy and
+//! tau_zx = eta du/dz, tau_zy = eta dv/dz (eta(z) the local, possibly effective, viscosity):
+//!
+//! tau_zx(z) = tau_a + z dp/dx,  u(z) = u1 + tau_a int_0^z dz'/eta + dp/dx int_0^z z'/eta dz',
+//!
+//! and u(h) = u2 fixes tau_a = (u2 - u1 - dp/dx F1) / F0 with F0 = int_0^h dz/eta,
+//! F1 = int_0^h z dz/eta (Yang & Wen 1990, eq. 3-5). Likewise v with dp/dy, tau_b and no
+//! surface speed.
+//!
+//! # Generalized Reynolds coefficients (Yang & Wen 1990, eq. 7-10)
+//!
+//! The mass flux q_x = int_0^h rho u dz is, with the integrals above substituted,
+//! q_x = u1 h rho_e + tau_a h^2 rho'_e + dp/dx h^3 rho''_e, with rho_e = (1/h) int rho dz,
+//! rho'_e = (1/h^2) int rho int_0^z dz'/eta dz, rho''_e = (1/h^3) int rho int_0^z z'/eta dz' dz;
+//! inserting tau_a and writing eta_e = h / F0, eta'_e = h^2 / F1 (so F1/F0 = h eta_e / eta'_e):
+//!
+//! q_x = -(rho/eta)_e h^3 / 12 dp/dx + rho*_x u_e h,   q_y = -(rho/eta)_e h^3 / 12 dp/dy,
+//!
+//! (rho/eta)_e = 12 (eta_e rho'_e / eta'_e - rho''_e),
+//! rho*_x u_e = u1 rho_e + (u2 - u1) eta_e rho'_e,   u_e = (u1 + u2) / 2
+//!
+//! [derived here; the same as Yang & Wen]. With eta and rho constant across z,
+//! rho'_e = rho / (2 eta), rho''_e = rho / (3 eta), so (rho/eta)_e = rho / eta and
+//! rho*_x = rho: the classical Reynolds equation.
+//!
+//! # Surface tractions
+//!
+//! The x-force per unit area the film exerts on surface 1 is +tau_zx(0) (the film lies above it,
+//! on the +z side), on surface 2 it is -tau_zx(h); likewise along y. This is the convention of
+//! [`crate::friction`] (whose force on body 2 is -tau_zx(h) = -(h/2) dp/dx + eta (u1 - u2)/h for a
+//! Newtonian film): the lubricant's drag pulls the slower surface forward and holds the faster
+//! one back.
+
+use super::collocation::Lobatto;
+
+/// Errors of the film computations (no result exists).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FilmError {
+    /// An argument is out of range (wrong length, non-finite, non-positive film, ...).
+    #[error("film: {0}")]
+    Input(String),
+    /// A lubricant law returned a value that is not positive and finite.
+    #[error("film: the {law} is {value} (not positive and finite) at p = {p} Pa, T = {t} K")]
+    Law {
+        law: &'static str,
+        value: f64,
+        p: f64,
+        t: f64,
+    },
+    /// The linear system of the energy equation on a line is singular.
+    #[error("film: the energy equation of a line could not be factorised (singular)")]
+    Singular,
+}
+
+impl From<FilmError> for crate::Error {
+    fn from(e: FilmError) -> Self {
+        crate::Error::Solver(e.to_string())
+    }
+}
+
+/// The lubricant laws the film needs, as functions of pressure p (Pa) and temperature T (K).
+/// Implementations must be pure (they are called from several threads).
+pub trait FilmLaws: Sync {
+    /// Low-shear viscosity eta(p, T) (Pa s).
+    fn viscosity(&self, p: f64, t: f64) -> f64;
+    /// Density rho(p, T) (kg/m^3).
+    fn density(&self, p: f64, t: f64) -> f64;
+    /// d rho / dT at constant p (kg/(m^3 K)); negative for thermal expansion.
+    fn density_dt(&self, p: f64, t: f64) -> f64;
+    /// Effective viscosity tau / gamma_dot (Pa s) at the shear rate magnitude `shear_rate`
+    /// (1/s) for the low-shear viscosity `eta`; Newtonian (returns `eta`) unless overridden,
+    /// e.g. with [`crate::lubricant::rheology::effective_viscosity`].
+    fn effective_viscosity(&self, eta: f64, shear_rate: f64, p: f64, t: f64) -> f64 {
+        let _ = (shear_rate, p, t);
+        eta
+    }
+}
+
+/// Thermal properties of the oil (taken constant).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OilThermal {
+    /// conductivity k_f (W/(m K))
+    pub conductivity: f64,
+    /// specific heat capacity c (J/(kg K))
+    pub heat_capacity: f64,
+}
+
+/// The velocity and stress profile of one film column and its generalized Reynolds
+/// coefficients (see the module documentation). Point values are at the rule's points
+/// zeta_k, k = 0..nz.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmProfile {
+    /// u(z_k) (m/s)
+    pub u: Vec<f64>,
+    /// v(z_k) (m/s)
+    pub v: Vec<f64>,
+    /// tau_zx(z_k) = tau_a + z_k dp/dx (Pa)
+    pub tau_zx: Vec<f64>,
+    /// tau_zy(z_k) (Pa)
+    pub tau_zy: Vec<f64>,
+    /// shear heating tau_zx du/dz + tau_zy dv/dz = |tau|^2 / eta (W/m^3)
+    pub heating: Vec<f64>,
+    /// F0 = int_0^h dz / eta (m/(Pa s))
+    pub f0: f64,
+    /// F1 = int_0^h z dz / eta (m^2/(Pa s))
+    pub f1: f64,
+    /// eta_e = h / F0 (Pa s)
+    pub eta_e: f64,
+    /// eta'_e = h^2 / F1 (Pa s)
+    pub eta_e1: f64,
+    /// rho_e = (1/h) int rho dz (kg/m^3)
+    pub rho_e: f64,
+    /// rho'_e = (1/h^2) int rho int_0^z dz'/eta dz (kg/(m^3 Pa s))
+    pub rho_e1: f64,
+    /// rho''_e = (1/h^3) int rho int_0^z z'/eta dz' dz (kg/(m^3 Pa s))
+    pub rho_e2: f64,
+    /// (rho/eta)_e = 12 (eta_e rho'_e / eta'_e - rho''_e) (kg/(m^3 Pa s)): the Poiseuille
+    /// coefficient, q = -(rho/eta)_e h^3/12 grad p + ...
+    pub rho_over_eta_e: f64,
+    /// rho*_x u_e = u1 rho_e + (u2 - u1) eta_e rho'_e (kg/(m^2 s)): the Couette flux per unit
+    /// film thickness; see [`FilmProfile::rho_star_x`]
+    pub rho_star_ue: f64,
+    /// q_x = -(rho/eta)_e h^3/12 dp/dx + rho*_x u_e h (kg/(m s))
+    pub flux_x: f64,
+    /// q_y = -(rho/eta)_e h^3/12 dp/dy (kg/(m s))
+    pub flux_y: f64,
+    /// (x, y) force per unit area the film exerts on surface 1: (tau_zx(0), tau_zy(0)) (Pa)
+    pub traction1: [f64; 2],
+    /// (x, y) force per unit area the film exerts on surface 2: -(tau_zx(h), tau_zy(h)) (Pa)
+    pub traction2: [f64; 2],
+}
+
+impl FilmProfile {
+    /// rho*_x = (rho*_x u_e) / u_e (kg/m^3), `None` when u_e = (u1 + u2)/2 = 0 (use
+    /// [`FilmProfile::rho_star_ue`] then).
+    pub fn rho_star_x(&self, u1: f64, u2: f64) -> Option<f64> {
+        let ue = 0.5 * (u1 + u2);
+        (ue != 0.0).then(|| self.rho_star_ue / ue)
+    }
+}
+
+/// One film column: the film, the pressure gradient and the surface speeds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Column {
+    /// film thickness h (m), positive and finite
+    pub h: f64,
+    /// dp/dx (Pa/m)
+    pub dpdx: f64,
+    /// dp/dy (Pa/m)
+    pub dpdy: f64,
+    /// speed of surface 1 (z = 0) along +x (m/s)
+    pub u1: f64,
+    /// speed of surface 2 (z = h) along +x (m/s)
+    pub u2: f64,
+}
+
+impl Column {
+    fn check(&self) -> Result<(), FilmError> {
+        if !(self.h > 0.0 && self.h.is_finite()) {
+            return Err(FilmError::Input(format!(
+                "film thickness must be positive and finite, got {}",
+                self.h
+            )));
+        }
+        for (name, v) in [
+            ("dp/dx", self.dpdx),
+            ("dp/dy", self.dpdy),
+            ("u1", self.u1),
+            ("u2", self.u2),
+        ] {
+            if !v.is_finite() {
+                return Err(FilmError::Input(format!("{name} must be finite, got {v}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// (tau_a, tau_b) = the shear stresses at z = 0 for the viscosities `eta` at the points.
+    fn wall_stress(&self, rule: &Lobatto, eta: &[f64]) -> (f64, f64, f64, f64) {
+        let h = self.h;
+        let (mut f0, mut f1) = (0.0, 0.0);
+        for k in 0..rule.len() {
+            f0 += rule.weights[k] / eta[k];
+            f1 += rule.weights[k] * rule.points[k] / eta[k];
+        }
+        f0 *= h;
+        f1 *= h * h;
+        let tau_a = (self.u2 - self.u1 - self.dpdx * f1) / f0;
+        let tau_b = -self.dpdy * f1 / f0;
+        (tau_a, tau_b, f0, f1)
+    }
+}
+
+fn check_points(rule: &Lobatto, name: &'static str, f: &[f64]) -> Result<(), FilmError> {
+    if f.len() != rule.len() {
+        return Err(FilmError::Input(format!(
+            "{name} has {} values, the rule has {} points",
+            f.len(),
+            rule.len()
+        )));
+    }
+    if let Some(v) = f.iter().find(|v| !(**v > 0.0 && v.is_finite())) {
+        return Err(FilmError::Input(format!(
+            "{name} must be positive and finite at every point, got {v}"
+        )));
+    }
+    Ok(())
+}
+
+/// Velocity profile and generalized Reynolds coefficients of a column whose viscosity `eta`
+/// (Pa s, the local, effective viscosity) and density `rho` (kg/m^3) are given at the rule's
+/// points (see the module documentation for the equations, Yang & Wen 1990). The integrals
+/// across z are the rule's cumulative integral and quadrature of the interpolants of 1/eta,
+/// z/eta, rho / eta ...: exact when those are polynomials of degree < nz, spectrally
+/// accurate for smooth profiles.
+pub fn velocity_profile(
+    rule: &Lobatto,
+    col: &Column,
+    eta: &[f64],
+    rho: &[f64],
+) -> Result<FilmProfile, FilmError> {
+    col.check()?;
+    check_points(rule, "viscosity", eta)?;
+    check_points(rule, "density", rho)?;
+    let n = rule.len();
+    let h = col.h;
+    let inv: Vec<f64> = eta.iter().map(|e| 1.0 / e).collect();
+    let zinv: Vec<f64> = inv.iter().zip(&rule.points).map(|(a, z)| a * z).collect();
+    let mut i0 = vec![0.0; n];
+    let mut i1 = vec![0.0; n];
+    rule.apply(&rule.cumulative, &inv, &mut i0);
+    rule.apply(&rule.cumulative, &zinv, &mut i1);
+    i0.iter_mut().for_each(|v| *v *= h);
+    i1.iter_mut().for_each(|v| *v *= h * h);
+    let (f0, f1) = (i0[n - 1], i1[n - 1]);
+    let tau_a = (col.u2 - col.u1 - col.dpdx * f1) / f0;
+    let tau_b = -col.dpdy * f1 / f0;
+    let u: Vec<f64> = (0..n)
+        .map(|k| col.u1 + tau_a * i0[k] + col.dpdx * i1[k])
+        .collect();
+    let v: Vec<f64> = (0..n).map(|k| tau_b * i0[k] + col.dpdy * i1[k]).collect();
+    let tau_zx: Vec<f64> = rule
+        .points
+        .iter()
+        .map(|z| tau_a + h * z * col.dpdx)
+        .collect();
+    let tau_zy: Vec<f64> = rule
+        .points
+        .iter()
+        .map(|z| tau_b + h * z * col.dpdy)
+        .collect();
+    let heating = (0..n)
+        .map(|k| (tau_zx[k] * tau_zx[k] + tau_zy[k] * tau_zy[k]) / eta[k])
+        .collect();
+    let rho_e = rule.integrate(rho);
+    let rho_e1 = (0..n)
+        .map(|k| rule.weights[k] * rho[k] * i0[k])
+        .sum::<f64>()
+        / h;
+    let rho_e2 = (0..n)
+        .map(|k| rule.weights[k] * rho[k] * i1[k])
+        .sum::<f64>()
+        / (h * h);
+    let eta_e = h / f0;
+    let eta_e1 = h * h / f1;
+    let rho_over_eta_e = 12.0 * (eta_e * rho_e1 / eta_e1 - rho_e2);
+    let rho_star_ue = col.u1 * rho_e + (col.u2 - col.u1) * eta_e * rho_e1;
+    let flux_x = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdx + rho_star_ue * h;
+    let flux_y = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdy;
+    Ok(FilmProfile {
+        traction1: [tau_zx[0], tau_zy[0]],
+        traction2: [-tau_zx[n - 1], -tau_zy[n - 1]],
+        u,
+        v,
+        tau_zx,
+        tau_zy,
+        heating,
+        f0,
+        f1,
+        eta_e,
+        eta_e1,
+        rho_e,
+        rho_e1,
+        rho_e2,
+        rho_over_eta_e,
+        rho_star_ue,
+        flux_x,
+        flux_y,
+    })
+}
+
+/// Options of the shear-thinning iteration of [`shear_thinning_profile`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShearOptions {
+    /// tolerance on max_k |ln eta_eff,k - ln eta_law(gamma_k)| (relative viscosity mismatch)
+    pub tol: f64,
+    /// at most this many Newton iterations
+    pub max_iter: usize,
+}
+
+impl Default for ShearOptions {
+    fn default() -> Self {
+        ShearOptions {
+            tol: 1e-10,
+            max_iter: 50,
+        }
+    }
+}
+
+/// A shear-thinning column: the profile at the converged effective viscosity and how the
+/// iteration went.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShearThinningProfile {
+    pub profile: FilmProfile,
+    /// effective viscosity at the points (Pa s)
+    pub eta_eff: Vec<f64>,
+    /// Newton iterations done (0: the law is Newtonian at this state)
+    pub iterations: usize,
+    /// final max_k |ln eta_eff,k - ln eta_law(gamma_k)|
+    pub residual: f64,
+    /// residual <= tol
+    pub converged: bool,
+}
+
+/// Solve a small dense system in place (Gaussian elimination with partial pivoting); false if
+/// singular.
+fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
+            .unwrap();
+        if !(a[p * n + c].abs() > 0.0 && a[p * n + c].is_finite()) {
+            return false;
+        }
+        if p != c {
+            for j in 0..n {
+                a.swap(c * n + j, p * n + j);
+            }
+            b.swap(c, p);
+        }
+        for r in c + 1..n {
+            let f = a[r * n + c] / a[c * n + c];
+            if f != 0.0 {
+                for j in c..n {
+                    a[r * n + j] -= f * a[c * n + j];
+                }
+                b[r] -= f * b[c];
+            }
+        }
+    }
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|j| a[c * n + j] * b[j]).sum();
+        b[c] = (b[c] - s) / a[c * n + c];
+    }
+    true
+}
+
+/// Velocity profile of a generalized-Newtonian column: the effective viscosity at each point
+/// depends on the local shear rate gamma = |tau| / eta_eff, which depends on the whole profile.
+///
+/// Unknowns y_k = ln eta_eff,k; residual R_k = y_k - ln laws.effective_viscosity(eta_k,
+/// gamma_k(y), p, T_k); Newton's method with a forward-difference Jacobian (step 1e-7 in y,
+/// nz + 1 evaluations of the cheap O(nz) stress, so the Jacobian is accurate to ~1e-7 and the
+/// convergence is quadratic down to that level, then linear at a rate ~1e-7) and a halving
+/// line search on max |R|. A Newtonian law gives R = 0 at y = ln eta: 0 iterations.
+/// Non-convergence within `opts.max_iter` is reported in the result, not as an error.
+///
+/// `eta` is the low-shear viscosity at the points (Pa s), `rho` the density (kg/m^3), `p` the
+/// pressure (Pa), `t` the temperature at the points (K).
+#[allow(clippy::too_many_arguments)]
+pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
+    rule: &Lobatto,
+    laws: &L,
+    col: &Column,
+    p: f64,
+    t: &[f64],
+    eta: &[f64],
+    rho: &[f64],
+    opts: ShearOptions,
+) -> Result<ShearThinningProfile, FilmError> {
+    col.check()?;
+    check_points(rule, "viscosity", eta)?;
+    check_points(rule, "temperature", t)?;
+    let n = rule.len();
+    let h = col.h;
+    let mut eta_eff = vec![0.0; n];
+    // the residual R(y) and the law's values
+    let residual = |y: &[f64], eta_eff: &mut [f64], r: &mut [f64]| -> Result<(), FilmError> {
+        for k in 0..n {
+            eta_eff[k] = y[k].exp();
+        }
+        let (ta, tb, _, _) = col.wall_stress(rule, eta_eff);
+        for k in 0..n {
+            let z = h * rule.points[k];
+            let tau = (ta + z * col.dpdx).hypot(tb + z * col.dpdy);
+            let gamma = tau / eta_eff[k];
+            let law = laws.effective_viscosity(eta[k], gamma, p, t[k]);
+            if !(law > 0.0 && law.is_finite()) {
+                return Err(FilmError::Law {
+                    law: "effective viscosity",
+                    value: law,
+                    p,
+                    t: t[k],
+                });
+            }
+            r[k] = y[k] - law.ln();
+        }
+        Ok(())
+    };
+    let norm = |r: &[f64]| r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut y: Vec<f64> = eta.iter().map(|e| e.ln()).collect();
+    let mut r = vec![0.0; n];
+    residual(&y, &mut eta_eff, &mut r)?;
+    let mut res = norm(&r);
+    let mut iterations = 0;
+    let mut jac = vec![0.0; n * n];
+    let (mut yp, mut rp, mut scratch) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    while res > opts.tol && iterations < opts.max_iter {
+        iterations += 1;
+        const STEP: f64 = 1e-7;
+        for j in 0..n {
+            yp.copy_from_slice(&y);
+            yp[j] += STEP;
+            residual(&yp, &mut scratch, &mut rp)?;
+            for i in 0..n {
+                jac[i * n + j] = (rp[i] - r[i]) / STEP;
+            }
+        }
+        let mut delta: Vec<f64> = r.iter().map(|v| -v).collect();
+        if !dense_solve(&mut jac, &mut delta, n) {
+            // singular Jacobian: a plain fixed-point step y <- ln eta_law
+            delta = r.iter().map(|v| -v).collect();
+        }
+        let mut lambda = 1.0;
+        loop {
+            for k in 0..n {
+                yp[k] = y[k] + lambda * delta[k];
+            }
+            residual(&yp, &mut scratch, &mut rp)?;
+            let rn = norm(&rp);
+            if rn < res || lambda < 1e-3 {
+                y.copy_from_slice(&yp);
+                r.copy_from_slice(&rp);
+                res = rn;
+                break;
+            }
+            lambda *= 0.5;
+        }
+    }
+    for k in 0..n {
+        eta_eff[k] = y[k].exp();
+    }
+    let profile = velocity_profile(rule, col, &eta_eff, rho)?;
+    Ok(ShearThinningProfile {
+        profile,
+        eta_eff,
+        iterations,
+        residual: res,
+        converged: res <= opts.tol,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs().max(1e-300)
+    }
+
+    /// Constant eta and rho: the classical film. Every quantity is a polynomial of degree <= 2
+    /// in z (u is parabolic), so with nz = 5 the rule is exact and the tolerance is rounding
+    /// (1e-12 relative, ~1e4 ulp for sums of a handful of O(1) terms with cancellation).
+    #[test]
+    fn constant_properties_give_the_classical_film() {
+        let rule = Lobatto::new(5);
+        let (eta, rho) = (0.04, 870.0);
+        let col = Column {
+            h: 2e-7,
+            dpdx: -3e12,
+            dpdy: 1e12,
+            u1: 1.3,
+            u2: 0.7,
+        };
+        let f = velocity_profile(&rule, &col, &[eta; 5], &[rho; 5]).unwrap();
+        assert!(rel(f.rho_over_eta_e, rho / eta) < 1e-12);
+        assert!(rel(f.rho_star_x(col.u1, col.u2).unwrap(), rho) < 1e-12);
+        assert!(rel(f.rho_e, rho) < 1e-14);
+        assert!(rel(f.eta_e, eta) < 1e-14 && rel(f.eta_e1, 2.0 * eta) < 1e-14);
+        let h = col.h;
+        for (k, zeta) in rule.points.iter().enumerate() {
+            let z = zeta * h;
+            let u =
+                col.dpdx / (2.0 * eta) * (z * z - z * h) + col.u1 * (1.0 - zeta) + col.u2 * zeta;
+            let v = col.dpdy / (2.0 * eta) * (z * z - z * h);
+            assert!((f.u[k] - u).abs() < 1e-12, "u {k}: {} vs {u}", f.u[k]);
+            assert!((f.v[k] - v).abs() < 1e-12, "v {k}: {} vs {v}", f.v[k]);
+            let tzx = col.dpdx * (z - h / 2.0) + eta * (col.u2 - col.u1) / h;
+            assert!(rel(f.tau_zx[k], tzx) < 1e-12);
+            assert!(rel(f.heating[k], (tzx.powi(2) + f.tau_zy[k].powi(2)) / eta) < 1e-12);
+        }
+        // the classical flux and crate::friction's surface stress on body 2
+        let q = -rho * h.powi(3) / (12.0 * eta) * col.dpdx + rho * 0.5 * (col.u1 + col.u2) * h;
+        assert!(rel(f.flux_x, q) < 1e-12);
+        assert!(rel(f.flux_y, -rho * h.powi(3) / (12.0 * eta) * col.dpdy) < 1e-12);
+        let tau2 = -(h / 2.0) * col.dpdx + eta * (col.u1 - col.u2) / h;
+        assert!(rel(f.traction2[0], tau2) < 1e-12);
+        assert!(
+            rel(
+                f.traction1[0],
+                -(h / 2.0) * col.dpdx + eta * (col.u2 - col.u1) / h
+            ) < 1e-12
+        );
+    }
+
+    /// Sign convention: with no pressure gradient the faster surface 1 is held back
+    /// (traction1 < 0) and the slower surface 2 pulled forward (traction2 > 0), by equal and
+    /// opposite forces.
+    #[test]
+    fn drag_pulls_the_slower_surface_forward() {
+        let rule = Lobatto::new(7);
+        let eta: Vec<f64> = rule.points.iter().map(|z| 0.1 * (2.0 * z).exp()).collect();
+        let col = Column {
+            h: 1e-6,
+            dpdx: 0.0,
+            dpdy: 0.0,
+            u1: 2.0,
+            u2: 1.0,
+        };
+        let f = velocity_profile(&rule, &col, &eta, &[800.0; 7]).unwrap();
+        assert!(f.traction1[0] < 0.0 && f.traction2[0] > 0.0);
+        assert_eq!(f.traction1[0], -f.traction2[0]);
+        let col = Column {
+            u1: 1.0,
+            u2: 2.0,
+            ..col
+        };
+        let f = velocity_profile(&rule, &col, &eta, &[800.0; 7]).unwrap();
+        assert!(f.traction1[0] > 0.0 && f.traction2[0] < 0.0);
+    }
+
+    /// eta = eta0 exp(a zeta), rho = rho0 (1 + b zeta): the flux by quadrature of rho u from the
+    /// profile equals the formula (an algebraic identity of the discrete integrals: rounding,
+    /// 1e-12), the profile meets both surface speeds (to rounding), F0 and F1 converge
+    /// spectrally to their closed forms, and so does the flux (nz = 7 against nz = 21).
+    #[test]
+    fn variable_properties_flux_and_convergence() {
+        let (eta0, a, rho0, b) = (0.05, 1.5, 850.0, -0.2);
+        let col = Column {
+            h: 5e-7,
+            dpdx: 4e11,
+            dpdy: -2e11,
+            u1: 0.4,
+            u2: 1.9,
+        };
+        let run = |nz: usize| {
+            let rule = Lobatto::new(nz);
+            let eta: Vec<f64> = rule.points.iter().map(|z| eta0 * (a * z).exp()).collect();
+            let rho: Vec<f64> = rule.points.iter().map(|z| rho0 * (1.0 + b * z)).collect();
+            let f = velocity_profile(&rule, &col, &eta, &rho).unwrap();
+            let ru: Vec<f64> = (0..nz).map(|k| rho[k] * f.u[k]).collect();
+            let rv: Vec<f64> = (0..nz).map(|k| rho[k] * f.v[k]).collect();
+            let qx = col.h * rule.integrate(&ru);
+            let qy = col.h * rule.integrate(&rv);
+            assert!(rel(qx, f.flux_x) < 1e-12, "nz {nz}: {qx} vs {}", f.flux_x);
+            assert!(rel(qy, f.flux_y) < 1e-12, "nz {nz}: {qy} vs {}", f.flux_y);
+            assert!((f.u[0] - col.u1).abs() < 1e-14 && (f.u[nz - 1] - col.u2).abs() < 1e-13);
+            assert!(f.v[0] == 0.0 && f.v[nz - 1].abs() < 1e-13);
+            f
+        };
+        let h = col.h;
+        let f0 = h * (1.0 - (-a).exp()) / (a * eta0);
+        let f1 = h * h * (1.0 - (1.0 + a) * (-a).exp()) / (a * a * eta0);
+        let reference = run(21);
+        let mut previous = f64::INFINITY;
+        for nz in [3usize, 5, 7, 9] {
+            let f = run(nz);
+            let err = rel(f.f0, f0).max(rel(f.f1, f1));
+            // spectral: each step of 2 points gains more than a factor 30
+            assert!(err < previous / 30.0, "nz {nz}: {err} after {previous}");
+            previous = err;
+            if nz == 7 {
+                assert!(rel(f.flux_x, reference.flux_x) < 1e-8);
+            }
+        }
+        assert!(previous < 1e-9);
+    }
+
+    /// A Carreau law (eta_eff = eta [1 + (eta gamma / G)^2]^((n - 1)/2)) in the tests.
+    struct Carreau {
+        g: f64,
+        n: f64,
+    }
+
+    impl FilmLaws for Carreau {
+        fn viscosity(&self, _: f64, _: f64) -> f64 {
+            unreachable!()
+        }
+        fn density(&self, _: f64, _: f64) -> f64 {
+            unreachable!()
+        }
+        fn density_dt(&self, _: f64, _: f64) -> f64 {
+            unreachable!()
+        }
+        fn effective_viscosity(&self, eta: f64, gamma: f64, _: f64, _: f64) -> f64 {
+            eta * (1.0 + (eta * gamma / self.g).powi(2)).powf(0.5 * (self.n - 1.0))
+        }
+    }
+
+    /// Shear thinning. Plane Couette flow with uniform eta has the exact solution of a uniform
+    /// effective viscosity at gamma = (u2 - u1)/h (checked to 1e-10, the iteration's
+    /// tolerance); with a pressure gradient and a viscosity varying across z the converged
+    /// state satisfies the law at every point (1e-10 relative, the tolerance) and the surface
+    /// speeds; a Newtonian law takes 0 iterations; an iteration cut short reports it.
+    #[test]
+    fn shear_thinning_column() {
+        let rule = Lobatto::new(9);
+        let laws = Carreau { g: 4.5e6, n: 0.57 };
+        let t = [350.0; 9];
+        let rho = [850.0; 9];
+        let eta = [1e4; 9];
+        let col = Column {
+            h: 1e-7,
+            dpdx: 0.0,
+            dpdy: 0.0,
+            u1: 2.0,
+            u2: 1.0,
+        };
+        let s = shear_thinning_profile(
+            &rule,
+            &laws,
+            &col,
+            1e9,
+            &t,
+            &eta,
+            &rho,
+            ShearOptions::default(),
+        )
+        .unwrap();
+        assert!(s.converged, "{s:?}");
+        let exact = laws.effective_viscosity(1e4, 1.0 / col.h, 0.0, 0.0);
+        assert!(
+            exact < 0.05 * 1e4,
+            "the case must be strongly shear-thinning"
+        );
+        for e in &s.eta_eff {
+            assert!(rel(*e, exact) < 1e-10, "{e} vs {exact}");
+        }
+        // pressure flow + sliding + a viscosity varying across z
+        let eta: Vec<f64> = rule.points.iter().map(|z| 1e4 * (-1.5 * z).exp()).collect();
+        // the pressure-flow stress h dp/dx ~ 1e9 Pa is of the order of the sliding stress
+        let col = Column {
+            dpdx: 1e16,
+            dpdy: 5e15,
+            ..col
+        };
+        let s = shear_thinning_profile(
+            &rule,
+            &laws,
+            &col,
+            1e9,
+            &t,
+            &eta,
+            &rho,
+            ShearOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            s.converged && s.iterations > 2,
+            "{}: {}",
+            s.iterations,
+            s.residual
+        );
+        let f = &s.profile;
+        for k in 0..9 {
+            let gamma = f.tau_zx[k].hypot(f.tau_zy[k]) / s.eta_eff[k];
+            let law = laws.effective_viscosity(eta[k], gamma, 0.0, 0.0);
+            assert!(rel(s.eta_eff[k], law) < 1e-10);
+        }
+        assert!((f.u[8] - col.u2).abs() < 1e-12 && f.v[8].abs() < 1e-12);
+        let short = ShearOptions {
+            tol: 1e-10,
+            max_iter: 1,
+        };
+        let s = shear_thinning_profile(&rule, &laws, &col, 1e9, &t, &eta, &rho, short).unwrap();
+        assert!(!s.converged && s.iterations == 1);
+        struct Newtonian;
+        impl FilmLaws for Newtonian {
+            fn viscosity(&self, _: f64, _: f64) -> f64 {
+                1.0
+            }
+            fn density(&self, _: f64, _: f64) -> f64 {
+                1.0
+            }
+            fn density_dt(&self, _: f64, _: f64) -> f64 {
+                0.0
+            }
+        }
+        let s =
+            shear_thinning_profile(&rule, &Newtonian, &col, 1e9, &t, &eta, &rho, short).unwrap();
+        assert!(s.converged && s.iterations == 0);
+    }
+}

@@ -2,11 +2,18 @@
 //!
 //! * [`solid`]: the surface temperature of a body moving under a heat flux (Jaeger's moving heat
 //!   source on a half-space, Carslaw & Jaeger 1959), by zero-padded FFT convolution;
-//! * [`film`]: the energy equation across the film (collocation across z), the velocity profile
-//!   of a film whose viscosity varies across z and the generalized Reynolds coefficients
-//!   (Yang & Wen 1990).
+//! * [`collocation`]: Legendre-Gauss-Lobatto points, quadrature, differentiation and
+//!   cumulative-integration matrices across the film;
+//! * [`film`]: the lubricant laws' trait, the velocity profile of a film whose viscosity varies
+//!   across z (with a shear-thinning iteration) and the generalized Reynolds coefficients
+//!   (Yang & Wen 1990);
+//! * [`film_energy`]: the energy equation of the film along a grid line (collocation across z,
+//!   upwind along x), its fixed point with the temperature-dependent laws, and the energy
+//!   accounting (heat into each surface, generated, convected).
 //!
 //! SI units throughout; temperatures in K.
 
+pub mod collocation;
 pub mod film;
+pub mod film_energy;
 pub mod solid;
