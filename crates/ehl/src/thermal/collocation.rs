@@ -22,6 +22,9 @@
 //!
 //! Matrices are row-major `nz x nz`.
 
+// index loops over collocation points read like the equations
+#![allow(clippy::needless_range_loop)]
+
 /// Lobatto points, weights and differentiation / integration matrices on [0, 1].
 #[derive(Debug, Clone)]
 pub struct Lobatto {

@@ -43,6 +43,9 @@
 //! Newtonian film): the lubricant's drag pulls the slower surface forward and holds the faster
 //! one back.
 
+// index loops over collocation points read like the equations
+#![allow(clippy::needless_range_loop)]
+
 use super::collocation::Lobatto;
 
 /// Errors of the film computations (no result exists).

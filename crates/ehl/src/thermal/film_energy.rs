@@ -19,8 +19,8 @@
 //!
 //! c m dT/dx|_zeta + c J dT/dzeta - (k_f / h) d2T/dzeta2 + h a T = h S,
 //!
-//! with m = h rho u (kg/(m s), the mass flux per unit zeta) and a = (1/rho)(d rho/dT)(u dp/dx
-//! + v dp/dy) (W/(m^3 K)). Keeping J (rather than the stretching term alone, which is what the
+//! with m = h rho u (kg/(m s), the mass flux per unit zeta) and
+//! a = (1/rho)(d rho/dT)(u dp/dx + v dp/dy) (W/(m^3 K)). Keeping J (rather than the stretching term alone, which is what the
 //! equation without w gives) is what makes the scheme conserve energy: with J, the convective
 //! terms are c [d(m T)/dx + d(J T)/dzeta] minus T times the continuity equation.
 //!
@@ -58,6 +58,9 @@
 //!
 //! Heat flux into body 1: q1 = +k_f dT/dz at z = 0; into body 2: q2 = -k_f dT/dz at z = h;
 //! positive when the film heats the body (W/m^2).
+
+// index loops over collocation points read like the equations
+#![allow(clippy::needless_range_loop)]
 
 use super::collocation::Lobatto;
 use super::film::{
@@ -129,7 +132,7 @@ impl Line<'_> {
                 )));
             }
         }
-        if !(self.dx > 0.0) {
+        if self.dx.is_nan() || self.dx <= 0.0 {
             return Err(FilmError::Input(format!(
                 "dx must be positive, got {}",
                 self.dx
