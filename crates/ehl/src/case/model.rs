@@ -300,30 +300,9 @@ pub use crate::lubricant::temperature::{
 };
 
 /// The thermal properties of a body (`[body1]`, `[body2]`: conductivity, heat_capacity,
-/// density), used when `[thermal]` is present.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct BodyThermal {
-    /// k (W/(m K))
-    pub conductivity: f64,
-    /// c (J/(kg K))
-    pub heat_capacity: f64,
-    /// rho (kg/m^3)
-    pub density: f64,
-}
-
-impl BodyThermal {
-    /// Bearing steel (AISI 52100 near room temperature: k 46.6 W/(m K), c 475 J/(kg K),
-    /// rho 7830 kg/m^3, Incropera & DeWitt, table A.1, rounded as thermal.md gives them).
-    pub const STEEL: BodyThermal = BodyThermal {
-        conductivity: 46.0,
-        heat_capacity: 470.0,
-        density: 7850.0,
-    };
-    /// kappa = k / (rho c) (m^2/s)
-    pub fn diffusivity(&self) -> f64 {
-        self.conductivity / (self.density * self.heat_capacity)
-    }
-}
+/// density), used when `[thermal]` is present; steel by default
+/// ([`crate::thermal::solid::SolidThermal::steel`]).
+pub use crate::thermal::solid::SolidThermal as BodyThermal;
 
 /// `[thermal]` with both bodies' properties.
 #[derive(Debug, Clone, PartialEq, Serialize)]

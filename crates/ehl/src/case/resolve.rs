@@ -1968,17 +1968,18 @@ fn thermal(
     }
     let body = |name: &str| -> R<BodyThermal> {
         let Some(bt) = top.get(name).and_then(|v| v.as_table()) else {
-            return Ok(BodyThermal::STEEL);
+            return Ok(BodyThermal::steel());
         };
         let b = Sec {
             file: top.file,
             path: if name == "body1" { "body1" } else { "body2" },
             table: bt,
         };
+        let steel = BodyThermal::steel();
         Ok(BodyThermal {
-            conductivity: b.positive("conductivity", "W/(m K)")?.unwrap_or(BodyThermal::STEEL.conductivity),
-            heat_capacity: b.positive("heat_capacity", "J/(kg K)")?.unwrap_or(BodyThermal::STEEL.heat_capacity),
-            density: b.positive("density", "kg/m^3")?.unwrap_or(BodyThermal::STEEL.density),
+            conductivity: b.positive("conductivity", "W/(m K)")?.unwrap_or(steel.conductivity),
+            heat_capacity: b.positive("heat_capacity", "J/(kg K)")?.unwrap_or(steel.heat_capacity),
+            density: b.positive("density", "kg/m^3")?.unwrap_or(steel.density),
         })
     };
     let bodies = [body("body1")?, body("body2")?];

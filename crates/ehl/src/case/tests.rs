@@ -921,7 +921,7 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     let text = format!("{EHL}{carreau}\n[thermal]\ninlet_temperature = 343.0\n");
     let c = parse(&text, &[]).unwrap();
     let th = c.thermal.as_ref().unwrap();
-    assert_eq!(th.bodies, [BodyThermal::STEEL; 2]);
+    assert_eq!(th.bodies, [BodyThermal::steel(); 2]);
     assert_eq!(th.lubricant.points_across_film, 7);
     let vt = th.lubricant.viscosity_temperature;
     assert_eq!(vt.s0, 1.1);

@@ -29,7 +29,7 @@
 //! Results are returned in SI.
 
 mod system;
-// pub mod thermal; (until the temperature model lands)
+pub mod thermal;
 pub mod transient;
 
 use crate::case::Lubricant;

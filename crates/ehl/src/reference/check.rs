@@ -50,6 +50,24 @@ pub struct CheckReport {
     pub cells_across_y: Option<f64>,
     /// transient runs (`motion.travel`): the time stepping
     pub transient: Option<TransientCheck>,
+    /// thermal runs (`[thermal]`): the thermal loading and the classical film reductions
+    pub thermal: Option<ThermalCheck>,
+}
+
+/// The thermal figures of a `[thermal]` case, as `ehl check` prints them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThermalCheck {
+    /// T0 (K)
+    pub inlet_temperature: f64,
+    /// beta = -d ln(eta)/dT at p = 0, T0 (1/K)
+    pub beta: f64,
+    /// L = eta0 beta u_e^2 / k_f
+    pub loading: f64,
+    /// h_thermal / h_isothermal: Murch & Wilson (rolling), Gupta et al. (with the case's SRR)
+    pub murch_wilson: f64,
+    pub gupta: f64,
+    /// Peclet numbers U_k b / (2 kappa_k) of both bodies
+    pub peclet: [f64; 2],
 }
 
 /// The time stepping of a transient case, as `ehl check` prints it (SI).
@@ -106,6 +124,7 @@ pub fn check_report(case: &Case) -> CheckReport {
             None
         },
         transient: None,
+        thermal: None,
     };
     if let (Some(kin), Some(m)) = (crate::run::transient::kinematics(case), &case.motion) {
         let est = crate::run::memory_estimate(case);
@@ -170,6 +189,24 @@ pub fn check_report(case: &Case) -> CheckReport {
                 film::pan_hamrock_spike_position(w, u, g) * r,
             ));
         }
+    }
+    if let (Some(th), Some(m), Some(lub)) = (&case.thermal, &case.motion, &case.lubricant) {
+        let tl = &th.lubricant;
+        let beta = tl.viscosity_temperature.beta;
+        let l = super::thermal::thermal_loading(lub.viscosity, beta, m.entrainment_speed, tl.conductivity);
+        let srr = m.slide_to_roll;
+        let b = report.hertz.b;
+        report.thermal = Some(ThermalCheck {
+            inlet_temperature: tl.inlet_temperature,
+            beta,
+            loading: l,
+            murch_wilson: super::thermal::murch_wilson(l),
+            gupta: super::thermal::gupta(l, srr, report.hertz.ph / report.hertz.e_red),
+            peclet: [
+                m.u1().abs() * b / (2.0 * th.bodies[0].diffusivity()),
+                m.u2().abs() * b / (2.0 * th.bodies[1].diffusivity()),
+            ],
+        });
     }
     report
 }
@@ -338,6 +375,20 @@ impl fmt::Display for CheckReport {
                     t.frames_every,
                     t.frames_bytes / 1e6
                 ),
+                "",
+            )?;
+        }
+        if let Some(t) = &self.thermal {
+            writeln!(f, "thermal ([thermal])")?;
+            row(f, "inlet temperature T0", fixed(t.inlet_temperature, 2), "K")?;
+            row(f, "viscosity-temperature beta", sci(t.beta), "1/K")?;
+            row(f, "thermal loading L = eta0 beta u_e^2/k_f", sci(t.loading), "")?;
+            row(f, "film reduction, Murch-Wilson (rolling)", fixed(t.murch_wilson, 3), "")?;
+            row(f, "film reduction, Gupta et al. (this SRR)", fixed(t.gupta, 3), "")?;
+            row(
+                f,
+                "Peclet numbers u b/(2 kappa) of body 1, 2",
+                format!("{}, {}", fixed(t.peclet[0], 2), fixed(t.peclet[1], 2)),
                 "",
             )?;
         }

@@ -13,6 +13,7 @@ use std::time::Instant;
 
 pub mod cancel;
 pub mod stress;
+pub mod thermal;
 pub mod transient;
 
 /// Receives progress reports from long solves: a fraction in [0, 1] (or NaN if unknown) and a
@@ -736,24 +737,38 @@ fn solve_ehl(
             ),
         );
     };
-    let r = crate::ehl::solve_steady_with_fallback_observed(
-        &EhlProblem {
-            grid,
-            gap,
-            operator: factory,
-            load,
-            lubricant,
-            entrainment_speed: motion.entrainment_speed,
-            reduced_radius: case.reduced_radius(),
-            reduced_modulus: case.reduced_modulus(),
-            hertz_half_width: hertz.b,
-            hertz_pressure: hertz.ph,
-            initial_pressure: dry_start,
-        },
+    let problem = EhlProblem {
+        grid,
+        gap,
+        operator: factory,
+        load,
+        lubricant,
+        entrainment_speed: motion.entrainment_speed,
+        reduced_radius: case.reduced_radius(),
+        reduced_modulus: case.reduced_modulus(),
+        hertz_half_width: hertz.b,
+        hertz_pressure: hertz.ph,
+        initial_pressure: dry_start,
+    };
+    let mut r = crate::ehl::solve_steady_with_fallback_observed(
+        &problem,
         &params,
         &|| progress.report(0.5, "EHL, second start"),
         &mut observer,
     );
+    // [thermal]: the temperature fixed point from the isothermal solution
+    let mut thermal_run = None;
+    if case.thermal.is_some() && r.converged {
+        let mut told = |outer: usize, change: f64| {
+            progress.report(
+                0.9,
+                &format!("thermal: outer iteration {outer}, film temperature change {change:.2e} K"),
+            )
+        };
+        let run = thermal::solve(case, &problem, &params, &r, &mut told)?;
+        r = run.result.ehl.clone();
+        thermal_run = Some(run);
+    }
     summary.converged = r.converged;
     summary.termination = r.termination.clone();
     summary.iterations = r.iterations;
@@ -766,7 +781,16 @@ fn solve_ehl(
     // Friction only from a converged solution: a figure from a half-solved film would be noise.
     // A failed friction integral does not throw away the solved pressure and film: the friction
     // keys are left out, `friction_failed` is set and a warning says why.
-    if r.converged {
+    if let Some(run) = &thermal_run {
+        // the thermal shear of the film's own velocity profile (the viscosity across z at its
+        // temperature, the rheology's effective viscosity), not the isothermal estimate
+        let mu = run.friction_force / load;
+        if r.converged && mu.is_finite() {
+            summary.friction_force_n = Some(run.friction_force);
+            summary.friction_coefficient = Some(mu);
+        }
+        thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
+    } else if r.converged {
         add_friction(
             &mut summary,
             &crate::friction::FrictionInput {
@@ -783,7 +807,7 @@ fn solve_ehl(
     }
     Ok(Solution {
         stress: None,
-        temperature: None,
+        temperature: thermal_run.map(|t| t.fields),
         grid,
         fields: Fields {
             pressure: r.pressure,

@@ -89,6 +89,12 @@ pub trait FilmLaws: Sync {
         let _ = (shear_rate, p, t);
         eta
     }
+    /// The limiting shear stress tau_L (Pa) at (p, T), if the law has one (None: no limit).
+    /// [`super::film_energy::line_coefficients`] caps each column's stress with it.
+    fn limiting_shear_stress(&self, p: f64, t: f64) -> Option<f64> {
+        let _ = (p, t);
+        None
+    }
 }
 
 /// Thermal properties of the oil (taken constant).

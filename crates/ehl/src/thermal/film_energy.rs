@@ -95,6 +95,11 @@ pub struct Line<'a> {
     /// an extra heat source (W/m^3) at every point (nx * nz, i-major), e.g. a lagged
     /// -rho c v dT/dy; `None`: zero
     pub extra_source: Option<&'a [f64]>,
+    /// the x mass flux per unit width q_x = int rho u dz (kg/(m s)) each column must carry,
+    /// per cell; `None`: the columns take `dpdx` as given. With it, `dpdx` is only the start:
+    /// each column's pressure gradient is re-solved for this flux with its viscosity across z
+    /// (see [`line_coefficients`]).
+    pub flux_x: Option<&'a [f64]>,
 }
 
 impl Line<'_> {
@@ -322,12 +327,60 @@ pub fn line_coefficients<L: FilmLaws + ?Sized>(
                 });
             }
         }
-        let col = line.column(i);
-        let s = shear_thinning_profile(rule, laws, &col, p, ti, &eta, &rho, opts.shear)?;
+        let mut col = line.column(i);
+        let mut s = shear_thinning_profile(rule, laws, &col, p, ti, &eta, &rho, opts.shear)?;
+        // a flux-driven column: the pressure gradient that carries the target flux with this
+        // temperature's viscosity, q = -(rho/eta)_e h^3/12 dp/dx + rho*_x u_e h (linear in
+        // dp/dx for a Newtonian film; a shear-thinning one is re-solved twice more). Driving the
+        // column by its flux rather than its pressure gradient keeps the film's fixed point
+        // bounded: at fixed dp/dx the pressure-flow heating (z dp/dx)^2 / eta grows as the
+        // viscosity falls and the iteration runs away (measured at the Hertz outlet of the
+        // thesis Table 3.7 line at SRR 0.3); at fixed flux dp/dx falls with the viscosity.
+        if let Some(q) = line.flux_x {
+            for _ in 0..3 {
+                let f = &s.profile;
+                let a = -f.rho_over_eta_e * col.h.powi(3) / 12.0;
+                let b = f.rho_star_ue * col.h;
+                let g = (q[i] - b) / a;
+                if !g.is_finite() || (g - col.dpdx).abs() <= 1e-12 * g.abs().max(1.0) {
+                    break;
+                }
+                col.dpdx = g;
+                s = shear_thinning_profile(rule, laws, &col, p, ti, &eta, &rho, opts.shear)?;
+            }
+        }
         if !s.converged {
             unconverged += 1;
         }
-        let f = s.profile;
+        let mut f = s.profile;
+        // the limiting shear stress (Bair & Winer 1979; thesis eq. 2.13-2.14) as a cap on the
+        // column: where the largest |tau| exceeds tau_L, the effective viscosity is scaled down
+        // uniformly by tau_L / max |tau| (twice, the pressure-flow part not scaling), so that the
+        // sliding stress sits at the limit and the heating (tau^2 / eta) falls with it, as the
+        // heat of a film slipping at its limit, tau_L |u1 - u2|, does. Applied only where the
+        // limit exceeds the column's pressure-flow stress range h |grad p| (the sliding part alone
+        // can then meet it); in the low-pressure inlet, where tau_L = Lambda p falls below that,
+        // the column keeps the law without the cap (its stresses are kPa there).
+        let tmid = ti[nz / 2];
+        if let Some(cap) = laws.limiting_shear_stress(p, tmid) {
+            let range = col.h * col.dpdx.hypot(col.dpdy);
+            if cap > range && cap > 0.0 {
+                let mut eta_eff = s.eta_eff;
+                for _ in 0..2 {
+                    let top = f
+                        .tau_zx
+                        .iter()
+                        .zip(&f.tau_zy)
+                        .fold(0.0f64, |m, (a, b)| m.max(a.hypot(*b)));
+                    if top <= cap {
+                        break;
+                    }
+                    let r = cap / top;
+                    eta_eff.iter_mut().for_each(|e| *e *= r);
+                    f = super::film::velocity_profile(rule, &col, &eta_eff, &rho)?;
+                }
+            }
+        }
         for k in 0..nz {
             let at = i * nz + k;
             c.mass_flux[at] = col.h * rho[k] * f.u[k];
@@ -699,6 +752,7 @@ mod tests {
             t2: &[T0],
             t_in: T0,
             extra_source: None,
+            flux_x: None,
         };
         let opts = LineOptions {
             tol: 1e-11,
@@ -808,6 +862,7 @@ mod tests {
                 t2: &walls,
                 t_in: T0,
                 extra_source: None,
+            flux_x: None,
             };
             let s = solve_line(&rule, &laws, &OIL, &line, t_start.as_deref(), &opts).unwrap();
             assert!(
@@ -923,6 +978,7 @@ mod tests {
                 t2: &walls,
                 t_in: T0,
                 extra_source: None,
+            flux_x: None,
             };
             let opts = LineOptions {
                 shear_heating: heating,
@@ -966,6 +1022,7 @@ mod tests {
             t2: &walls,
             t_in: T0,
             extra_source: None,
+            flux_x: None,
         };
         let opts = LineOptions::default();
         let t: Vec<f64> = vec![T0; nx * 7];

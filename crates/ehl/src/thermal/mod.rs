@@ -11,9 +11,16 @@
 //!   upwind along x), its fixed point with the temperature-dependent laws, and the energy
 //!   accounting (heat into each surface, generated, convected).
 //!
+//! * [`contact`]: film and both bodies together for a given pressure and film: the
+//!   temperatures, the generalized Reynolds factors, the heat balance (the physics object the
+//!   thermal driver `crate::ehl::thermal` iterates with).
+//!
 //! SI units throughout; temperatures in K.
 
 pub mod collocation;
+pub mod contact;
 pub mod film;
 pub mod film_energy;
 pub mod solid;
+
+pub use contact::{ContactOptions, HeatBalance, ThermalContact};

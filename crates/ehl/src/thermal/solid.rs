@@ -60,7 +60,7 @@ use std::f64::consts::PI;
 use std::sync::{Arc, OnceLock};
 
 /// Thermal properties of a homogeneous solid body (SI).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SolidThermal {
     /// thermal conductivity k (W/(m K))
     pub conductivity: f64,

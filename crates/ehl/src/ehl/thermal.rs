@@ -1,0 +1,207 @@
+//! Steady thermal EHL: the pressure, film and temperatures of a contact whose lubricant heats up
+//! (issue 13), as a fixed point between the Reynolds solve and the temperature solve.
+//!
+//! One outer iteration:
+//!
+//! 1. the temperature model ([`crate::thermal::ThermalContact`]) takes the current pressure and
+//!    film and solves the energy equation across the film with both bodies' surface
+//!    temperatures (Jaeger's moving heat source on each body), iterated between film and bodies;
+//! 2. from the temperature across the film it forms the generalized Reynolds coefficients
+//!    (Yang & Wen 1990) as per-cell factors on the isothermal ones
+//!    ([`super::system::ThermalFactors`]), (relaxed against the previous ones when `relaxation` < 1);
+//! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
+//!    from the last solution, the factors frozen.
+//!
+//! The fixed point stops when the film temperature is estimated within
+//! [`ThermalParams::tolerance_k`] of the fixed point (from the last change between outer
+//! iterations and the contraction of the last two) and the last Newton solve converged. The
+//! first iteration starts from the isothermal solution (all factors 1). A relaxed fixed point
+//! is the older of the two couplings the literature uses (Yang & Wen 1990; Kim & Sadeghi 1992);
+//! the single Newton system of Habchi et al. (Tribol. Lett. 30 (2008) 41) converges faster and
+//! is left for later.
+
+use super::system::{Physics, State, System, ThermalFactors};
+use super::{finish, line_band, solve_from, EhlParams, EhlProblem, EhlResult, Stats, Termination};
+use crate::thermal::ThermalContact;
+
+/// Controls of the thermal fixed point.
+#[derive(Debug, Clone, Copy)]
+pub struct ThermalParams {
+    /// stop when the film temperature is estimated within this of the fixed point (K): the
+    /// last change between outer iterations times rho / (1 - rho), rho the ratio of the last
+    /// two changes
+    pub tolerance_k: f64,
+    /// most outer iterations
+    pub max_outer: usize,
+    /// under-relaxation of the Reynolds factors (1: none)
+    pub relaxation: f64,
+}
+
+impl Default for ThermalParams {
+    fn default() -> Self {
+        ThermalParams {
+            tolerance_k: 0.05,
+            max_outer: 80,
+            relaxation: 1.0,
+        }
+    }
+}
+
+/// The thermal solution: the EHL fields (viscosity and density at the mid-film temperature),
+/// and how the fixed point went. The temperatures stay in the [`ThermalContact`].
+#[derive(Debug, Clone)]
+pub struct ThermalResult {
+    pub ehl: EhlResult,
+    /// outer (Reynolds - temperature) iterations
+    pub outer_iterations: usize,
+    /// largest film-temperature change of the last outer iteration (K)
+    pub last_change_k: f64,
+    /// Newton steps over all outer iterations (the isothermal start not included)
+    pub newton_steps: usize,
+}
+
+/// Solves the thermal problem from the isothermal solution `start` of the same `problem`.
+/// `contact` holds the temperature model and keeps the final temperatures. Never panics on a
+/// physical input: a failed Newton solve or a fixed point that does not settle is returned with
+/// `converged == false` and the reason in `termination`.
+pub fn solve_thermal(
+    problem: &EhlProblem,
+    params: &EhlParams,
+    thermal: &ThermalParams,
+    start: &EhlResult,
+    contact: &mut ThermalContact,
+    observer: &mut (dyn FnMut(usize, f64) + Send),
+) -> ThermalResult {
+    rayon::scope(|_| run(problem, params, thermal, start, contact, observer))
+}
+
+fn run(
+    problem: &EhlProblem,
+    params: &EhlParams,
+    thermal: &ThermalParams,
+    start: &EhlResult,
+    contact: &mut ThermalContact,
+    observer: &mut (dyn FnMut(usize, f64) + Send),
+) -> ThermalResult {
+    let grid = problem.grid;
+    let (b, r, ph) = (
+        problem.hertz_half_width,
+        problem.reduced_radius,
+        problem.hertz_pressure,
+    );
+    let hs = b * b / r;
+    let lub = problem.lubricant;
+    let phys = Physics::new(
+        lub.clone(),
+        ph,
+        12.0 * problem.entrainment_speed * lub.viscosity * r * r / (b * b * b * ph),
+    );
+    let mut sys = System::new(
+        grid,
+        (problem.operator)(grid),
+        problem.gap,
+        b,
+        r,
+        phys,
+        problem.load,
+        line_band(grid, params.band),
+        params.wedge_upwind_order != 1,
+    );
+    let n = grid.len();
+    let mut st = State::new(n);
+    for k in 0..n {
+        st.p[k] = if sys.active[k] {
+            start.pressure[k] / ph
+        } else {
+            0.0
+        };
+    }
+    st.h0 = start.h0 / hs;
+    let mut factors = ThermalFactors {
+        flow: vec![1.0; n],
+        couette: vec![1.0; n],
+    };
+    sys.thermal = Some(factors.clone());
+    sys.eval(&mut st);
+
+    let mut stats = Stats::default();
+    let mut end = None;
+    let mut change = f64::INFINITY;
+    let (mut prev, mut estimate) = (f64::INFINITY, f64::INFINITY);
+    let mut outer = 0;
+    let (mut p_si, mut h_si) = (vec![0.0; n], vec![0.0; n]);
+    let (mut flow, mut couette) = (vec![1.0; n], vec![1.0; n]);
+    let mut failure = None;
+    while outer < thermal.max_outer {
+        if crate::run::cancel::requested() {
+            failure = Some(Termination::Cancelled);
+            break;
+        }
+        outer += 1;
+        for k in 0..n {
+            p_si[k] = st.p[k] * ph;
+            h_si[k] = if sys.active[k] {
+                st.h[k] * hs
+            } else {
+                f64::INFINITY
+            };
+        }
+        change = match contact.update(&p_si, &h_si, &sys.active, Some((&factors.flow, &factors.couette))) {
+            Ok(c) => c,
+            Err(e) => {
+                failure = Some(Termination::ThermalFailed(e.to_string()));
+                break;
+            }
+        };
+        observer(outer, change);
+        // the distance to the fixed point, from the contraction rho of the last two changes:
+        // e ~ change rho / (1 - rho) (a linear fixed point; measured rho ~ 0.87 on the thesis
+        // Table 3.7 line at SRR 0.3, where the change alone would stop 7x too early)
+        let rho = if prev.is_finite() && change < prev { change / prev } else { 0.99 };
+        estimate = change * rho / (1.0 - rho);
+        prev = change;
+        let settled = estimate <= thermal.tolerance_k;
+        if settled && end.as_ref().is_some_and(|e: &super::StageEnd| e.converged) {
+            break;
+        }
+        contact.reynolds_factors(&p_si, &sys.active, &mut flow, &mut couette);
+        let w = if outer == 1 { 1.0 } else { thermal.relaxation };
+        for k in 0..n {
+            factors.flow[k] += w * (flow[k] - factors.flow[k]);
+            factors.couette[k] += w * (couette[k] - factors.couette[k]);
+        }
+        sys.thermal = Some(factors.clone());
+        sys.eval(&mut st);
+        let e = solve_from(&mut sys, &mut st, params.tolerance, params, &mut stats);
+        let ok = e.converged;
+        end = Some(e);
+        if !ok {
+            break;
+        }
+    }
+    let newton_steps = stats.newton;
+    let mut end = end.unwrap_or_else(|| super::StageEnd {
+        converged: false,
+        reason: Termination::MaxIterations(0),
+        residual: f64::INFINITY,
+        load_error: f64::INFINITY,
+    });
+    if let Some(f) = failure {
+        end.converged = false;
+        end.reason = f;
+    } else if end.converged && !(estimate <= thermal.tolerance_k) {
+        end.converged = false;
+        end.reason = Termination::ThermalNotSettled {
+            outer,
+            change_k: change,
+        };
+    }
+    let mut ehl = finish(problem, &mut sys, st, end, &stats);
+    contact.fill_laws(&ehl.pressure, &sys.active, &mut ehl.viscosity, &mut ehl.density);
+    ThermalResult {
+        ehl,
+        outer_iterations: outer,
+        last_change_k: change,
+        newton_steps,
+    }
+}

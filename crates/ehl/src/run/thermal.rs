@@ -1,0 +1,94 @@
+//! A thermal steady run (`[thermal]`): the temperature model built from the case, the thermal
+//! fixed point from the isothermal solution, and the summary figures (temperatures, heat
+//! balance, flash temperature, friction from the thermal shear). The physics is in
+//! [`crate::thermal`], the fixed point in [`crate::ehl::thermal`].
+
+use crate::case::Case;
+use crate::ehl::thermal::{solve_thermal, ThermalParams, ThermalResult};
+use crate::ehl::{EhlParams, EhlProblem, EhlResult};
+use crate::lubricant::temperature::ThermalLaws;
+use crate::solution::{Summary, TemperatureFields};
+use crate::thermal::ThermalContact;
+use crate::{Error, Result};
+
+/// What a thermal run adds to the isothermal one.
+pub struct ThermalRun {
+    pub result: ThermalResult,
+    pub fields: TemperatureFields,
+    /// x-force of the film on body 2 (N; a line contact per metre), the friction convention of
+    /// [`crate::friction`]
+    pub friction_force: f64,
+    pub contact: ThermalContact,
+}
+
+/// Solves the thermal problem of `case` from the isothermal solution `iso` of `problem`.
+pub fn solve(
+    case: &Case,
+    problem: &EhlProblem,
+    params: &EhlParams,
+    iso: &EhlResult,
+    observer: &mut (dyn FnMut(usize, f64) + Send),
+) -> Result<ThermalRun> {
+    let (Some(spec), Some(lub), Some(m)) = (&case.thermal, &case.lubricant, &case.motion) else {
+        return Err(Error::Solver("a thermal run needs [thermal], [lubricant] and [motion]".into()));
+    };
+    let laws = ThermalLaws::new(lub, &spec.lubricant);
+    let mut contact = ThermalContact::new(problem.grid, laws, spec.bodies, m.u1(), m.u2())?;
+    let result = solve_thermal(
+        problem,
+        params,
+        &ThermalParams::default(),
+        iso,
+        &mut contact,
+        observer,
+    );
+    let fields = contact.fields(&result.ehl.film);
+    let friction_force = contact.friction_force();
+    Ok(ThermalRun {
+        result,
+        fields,
+        friction_force,
+        contact,
+    })
+}
+
+/// The thermal figures of `run` into `summary`; `mu` the friction coefficient when known (for
+/// Blok's estimate, line contacts only).
+pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut Summary) {
+    let t = &run.fields;
+    let g = run.contact.grid();
+    let argmax = |v: &[f64]| {
+        (0..v.len()).fold(0, |m, k| if v[k].is_finite() && (!v[m].is_finite() || v[k] > v[m]) { k } else { m })
+    };
+    let k = argmax(&t.max_film);
+    summary.max_film_temperature_k = Some(t.max_film[k]);
+    summary.max_film_temperature_at_m = Some([g.x(k % g.nx), g.y(k / g.nx)]);
+    let smax = |v: &[f64]| v.iter().cloned().filter(|x| x.is_finite()).fold(t.inlet, f64::max);
+    let s = [smax(&t.surface_1), smax(&t.surface_2)];
+    summary.max_surface_temperature_k = Some(s);
+    summary.flash_temperature_k = Some(s[0].max(s[1]) - t.inlet);
+    let heat = run.contact.heat();
+    summary.mean_film_temperature_k = Some(heat.mean_film_temperature);
+    summary.heat_generated_w = Some(heat.generated);
+    summary.heat_to_body_w = Some(heat.to_body);
+    summary.heat_convected_w = Some(heat.convected);
+    summary.energy_balance_error = Some(heat.balance_error());
+    summary.thermal_iterations = Some(run.result.outer_iterations);
+    let line = case.body1.shape != crate::case::Shape::Ball;
+    if let (Some(mu), Some(spec), Some(m), true) = (mu, &case.thermal, &case.motion, line) {
+        // Blok for a line contact: w' the load per length, body 1's properties for both
+        let w = case.load.force_per_length;
+        let b = summary.hertz_half_width_m;
+        let bt = spec.bodies[0];
+        summary.flash_temperature_blok_k = Some(crate::reference::thermal::blok_flash(
+            mu,
+            w,
+            m.u1(),
+            m.u2(),
+            b,
+            bt.conductivity,
+            bt.density,
+            bt.heat_capacity,
+        ));
+    }
+}
