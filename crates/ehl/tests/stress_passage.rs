@@ -318,3 +318,62 @@ fn passage_speed_256_squared_24_layers_150_steps() {
         );
     }
 }
+
+/// A frictionless Hertz line pressure (p0 = 1, b = 1, nu = 0.3, exact cell averages on 256 cells
+/// over [-2 b, 2 b]) carried past body points moving at u = 1 by half a cell per evaluation,
+/// 4 b of travel: every complete material column's tau_xz range at z = 0.5 b is McEwen's
+/// 2 x 0.250 p0 and its maximum von Mises at z = 0.70 b is 0.557 p0 (Johnson 1985 sec. 4.2),
+/// here taken from the closed form on a fine x grid (reference::subsurface). Tolerance 2e-3 p0:
+/// the DC-FFT field of these loads is within 1.3e-3 p0 of the closed form everywhere below
+/// 3.2 dx on this grid (tests/stress.rs, hertz_line_field_point_by_point); the samples are dx/2
+/// apart, so the extremes are missed by at most the field's curvature x (dx/4)^2 / 2 ~ 1e-6 p0.
+#[test]
+fn hertz_line_passage_gives_mcewen_tau_xz_range_and_von_mises() {
+    use ehl::grid::Grid;
+    use ehl::reference::subsurface::hertz_line_stress;
+    use ehl::stress::field::stress_field;
+    let (nx, nu) = (256, 0.3);
+    let grid = Grid::new(nx, 1, -2.0, 2.0, -0.5, 0.5);
+    let prim = |x: f64| {
+        let x = x.clamp(-1.0, 1.0);
+        0.5 * (x * (1.0 - x * x).sqrt() + x.asin())
+    };
+    let p: Vec<f64> = (0..nx)
+        .map(|i| {
+            let x0 = grid.x_min + i as f64 * grid.dx;
+            (prim(x0 + grid.dx) - prim(x0)) / grid.dx
+        })
+        .collect();
+    let z = [0.5, 0.70];
+    let field = stress_field(&grid, &p, None, nu, &z, true);
+    let (u, dt) = (1.0, 0.5 * grid.dx);
+    let steps = (4.0 / (u * dt)).round() as usize;
+    let mut passage = Passage::new(1, &grid, u, steps as f64 * dt, &z, None);
+    for n in 0..=steps {
+        passage.accumulate(&field, n as f64 * dt);
+    }
+    let maps = passage.maps();
+    // the closed form's extremes on a fine grid
+    let xs: Vec<f64> = (0..=8000).map(|k| -2.0 + 4.0 * k as f64 / 8000.0).collect();
+    let range_exact = {
+        let t: Vec<f64> = xs.iter().map(|&x| hertz_line_stress(x, 0.5, 1.0, 1.0, 0.0, nu)[4]).collect();
+        t.iter().cloned().fold(f64::NEG_INFINITY, f64::max) - t.iter().cloned().fold(f64::INFINITY, f64::min)
+    };
+    let vm_exact = xs.iter().map(|&x| von_mises(&hertz_line_stress(x, 0.70, 1.0, 1.0, 0.0, nu))).fold(0.0, f64::max);
+    // Johnson quotes three figures at a rounded depth (0.70 b): agreement to 1e-3 p0
+    assert!((range_exact - 0.5).abs() < 1e-3 && (vm_exact - 0.557).abs() < 1e-3, "{range_exact} {vm_exact}");
+    let cols: Vec<usize> = (0..passage.nx_body)
+        .filter(|&m| passage.contact_span[m][0] <= -1.9 && passage.contact_span[m][1] >= 1.9)
+        .collect();
+    assert!(!cols.is_empty());
+    let nxb = passage.nx_body;
+    let mut worst: f64 = 0.0;
+    for &m in &cols {
+        let r = maps.tau_xz_range[m] as f64;
+        let v = maps.max_von_mises[nxb + m] as f64;
+        worst = worst.max((r - range_exact).abs()).max((v - vm_exact).abs());
+        assert!((r - range_exact).abs() < 2e-3, "column {m}: tau_xz range {r} vs {range_exact}");
+        assert!((v - vm_exact).abs() < 2e-3, "column {m}: von Mises {v} vs {vm_exact}");
+    }
+    eprintln!("{} complete columns: tau_xz range {range_exact:.4} p0, von Mises {vm_exact:.4} p0, worst error {worst:.1e} p0", cols.len());
+}
