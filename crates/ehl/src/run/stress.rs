@@ -126,6 +126,10 @@ pub fn tractions(
     }
 }
 
+/// One evaluation's surface loads kept for the Dang Van second pass: time (s), pressure (Pa),
+/// the tractions on [body 1, body 2] (Pa), f32.
+type KeptLoads = (f64, Vec<f32>, Option<[Vec<f32>; 2]>);
+
 /// The stress history of a transient run with `[stress]` in the material frame of each chosen
 /// body ([`crate::stress::passage`]): the accumulators and how they were fed.
 #[derive(Debug, Clone)]
@@ -145,7 +149,7 @@ pub struct PassageRun {
     /// `fatigue.dang_van`: the surface loads of each evaluation (time s, pressure Pa, the
     /// tractions of [body 1, body 2] Pa, f32) for the second pass ([`Self::finish`]); emptied
     /// by it
-    loads: Vec<(f64, Vec<f32>, Option<[Vec<f32>; 2]>)>,
+    loads: Vec<KeptLoads>,
     /// wall time of the Dang Van second pass (s)
     pub dang_van_seconds: f64,
     poisson: [f64; 2],
