@@ -164,6 +164,10 @@ pub struct Summary {
     /// `[thermal]`: outer (Reynolds - temperature) fixed-point iterations
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal_iterations: Option<usize>,
+    /// transient runs with `[stress]`: the maxima of each chosen body's passage maps
+    /// (`stress_passage.npz`), positions in that body's material frame
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub passage: Option<Vec<PassageFigures>>,
     /// true when the EHL pressure and film were solved but the friction integral failed (the
     /// friction keys are then absent and `warnings` says why); written only when true
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -196,6 +200,37 @@ pub struct StressFigures {
     pub max_orthogonal_shear_at_m: [f64; 3],
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fatigue_integral: Option<f64>,
+}
+
+/// The passage figures of one body (`summary.json`: `passage`): maxima over its material
+/// points of the max-over-passage maps, positions [x_body, y, z] (m) in the body's material frame
+/// (x_body = x - u_body t; features[0]'s centre at x_body = x_p(0) when on this body).
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct PassageFigures {
+    pub body: u8,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_von_mises_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_von_mises_at_m: Option<[f64; 3]>,
+    /// the largest range (max - min over the passage) of tau_xz
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_tau_xz_range_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_tau_xz_range_at_m: Option<[f64; 3]>,
+    /// `fatigue.dang_van`: the largest Dang Van indicator (> 1: the fatigue limit is crossed)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_dang_van: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_dang_van_at_m: Option<[f64; 3]>,
+    /// steps whose stress was accumulated
+    pub evaluations: usize,
+    /// every k-th step evaluated (and the last)
+    pub every_steps: usize,
+    /// deepest layer of the window (m) and the number of layers
+    pub window_m: f64,
+    pub layers: usize,
+    /// bytes of the accumulators
+    pub memory_bytes: f64,
 }
 
 /// A solved case.
@@ -300,4 +335,6 @@ pub struct TransientRecord {
     pub dt_s: f64,
     /// every k-th step kept in `frames`
     pub frames_every: usize,
+    /// `[stress]`: the stress history in the material frame of each chosen body
+    pub passage: Option<crate::run::stress::PassageRun>,
 }

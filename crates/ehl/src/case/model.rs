@@ -272,6 +272,9 @@ pub struct StressSpec {
     pub spacing: DepthSpacing,
     /// dry runs: Coulomb coefficient of full sliding (traction mu p along +x on body 1)
     pub friction: f64,
+    /// transient runs: the depth (m) down to which the passage maps are kept
+    /// (`stress.window`, given in b); None: every layer of the depth grid
+    pub window_m: Option<f64>,
 }
 
 impl StressSpec {
@@ -289,6 +292,18 @@ impl StressSpec {
                 (0..n).map(|k| if k + 1 == n { self.depth_m } else { z1 * r.powi(k as i32) }).collect()
             }
         }
+    }
+
+    /// The layers of the passage maps of a transient run: those of [`Self::depths`] within the
+    /// window (all of them without a window; at least the first).
+    pub fn window_depths(&self, dx: f64, dy: f64) -> Vec<f64> {
+        let z = self.depths(dx, dy);
+        let Some(w) = self.window_m else {
+            return z;
+        };
+        // a relative margin so that window = depth keeps the deepest layer despite round-off
+        let n = z.iter().filter(|&&v| v <= w * (1.0 + 1e-9)).count().max(1);
+        z[..n].to_vec()
     }
 }
 

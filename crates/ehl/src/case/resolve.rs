@@ -1784,7 +1784,8 @@ fn output(top: &Sec, span: Option<Span>) -> R<OutputSpec> {
 }
 
 /// `[stress]` (optional). `b`: the Hertz half-width (m) that `depth` is given in.
-fn stress(top: &Sec, kind: Kind, b: f64) -> R<Option<StressSpec>> {
+/// `transient`: the case has a `motion.travel` (the passage maps need one).
+fn stress(top: &Sec, kind: Kind, b: f64, transient: bool) -> R<Option<StressSpec>> {
     let Some(t) = sub(top, "stress", "the stress below the surface")? else {
         return Ok(None);
     };
@@ -1831,23 +1832,42 @@ fn stress(top: &Sec, kind: Kind, b: f64) -> R<Option<StressSpec>> {
             "stress.friction is for dry runs; in an EHL run the surface shear comes from the lubricant's rheology (the friction integral's shear stress)",
         ));
     }
-    if s.has("window") {
-        return Err(s.err(
-            "window",
-            "the passage maps of a transient run (stress.window) are not implemented yet; leave the key out (the stress is computed at the step of highest pressure)",
-        ));
-    }
+    // the passage maps of a transient run keep the layers down to the window (in b)
+    let window_m = match s.positive("window", "Hertz half-widths b")? {
+        None => None,
+        Some(_) if !transient => {
+            return Err(s.err(
+                "window",
+                "stress.window limits the depth of the passage maps of a transient run (motion.travel); a steady run has no passage: leave the key out, or add motion.travel",
+            ))
+        }
+        Some(w) if w * b > depth_m * (1.0 + 1e-9) => {
+            return Err(s.err(
+                "window",
+                format!(
+                    "the window ({} b = {} m) reaches below the deepest layer of the depth grid ({} m = {} b): give a window <= the depth",
+                    fmt_num(w),
+                    fmt_num(w * b),
+                    fmt_num(depth_m),
+                    fmt_num(depth_m / b)
+                ),
+            ))
+        }
+        Some(w) => Some(w * b),
+    };
     Ok(Some(StressSpec {
         bodies,
         depth_m,
         layers,
         spacing,
         friction,
+        window_m,
     }))
 }
 
 /// `[fatigue]` (optional; needs `[stress]`).
-fn fatigue(top: &Sec, has_stress: bool) -> R<Option<FatigueSpec>> {
+/// `transient`: the case has a `motion.travel` (Dang Van needs the passage).
+fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec>> {
     let Some(t) = sub(top, "fatigue", "the fatigue indicator")? else {
         return Ok(None);
     };
@@ -1872,18 +1892,38 @@ fn fatigue(top: &Sec, has_stress: bool) -> R<Option<FatigueSpec>> {
     let weibull_slope = s.positive("weibull_slope", "")?.unwrap_or(1.1);
     let stress_exponent = s.positive("stress_exponent", "")?.unwrap_or(31.0 / 3.0);
     let depth_exponent = s.non_negative("depth_exponent", "")?.unwrap_or(0.0);
-    if s.has("dang_van") {
-        return Err(s.err(
-            "dang_van",
-            "the Dang Van indicator needs the stress history over a passage, which is not implemented yet; leave the key out",
-        ));
-    }
+    let dang_van = match s.table(
+        "dang_van",
+        "the Dang Van indicator over the passage: { alpha = 0.3, beta = 4.5e8 }",
+    )? {
+        None => None,
+        Some(_) if !transient => {
+            return Err(s.err(
+                "dang_van",
+                "the Dang Van indicator needs the stress history of each material point over a passage through the contact, which only a transient run (motion.travel) has; leave fatigue.dang_van out of a steady run",
+            ))
+        }
+        Some(t) => {
+            let key = s.key("dang_van");
+            let d = Sec {
+                file: s.file,
+                path: &key,
+                table: t,
+            };
+            let def = crate::stress::passage::DangVan::default();
+            Some(crate::stress::passage::DangVan {
+                alpha: d.non_negative("alpha", "(dimensionless)")?.unwrap_or(def.alpha),
+                beta: d.positive("beta", "Pa")?.unwrap_or(def.beta),
+            })
+        }
+    };
     Ok(Some(FatigueSpec {
         criterion,
         fatigue_limit,
         weibull_slope,
         stress_exponent,
         depth_exponent,
+        dang_van,
     }))
 }
 
@@ -2104,8 +2144,8 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         }
     }
     let output = output(&top, span)?;
-    let stress = stress(&top, kind, b)?;
-    let fatigue = fatigue(&top, stress.is_some())?;
+    let stress = stress(&top, kind, b, travel.is_some())?;
+    let fatigue = fatigue(&top, stress.is_some(), travel.is_some())?;
     let case = Case {
         title,
         kind,

@@ -531,6 +531,8 @@ fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid,
             snapshots: Vec::new(),
             dt_s: t.dt_s,
             frames_every: t.frames_every,
+            // the passage maps are written from the full solution, not a cropped strip
+            passage: None,
         },
     ))
 }

@@ -195,11 +195,15 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
         let threads = rayon::current_num_threads() as f64;
         per_body * s.bodies.len() as f64 + threads * (nx * ny) as f64 * 20.0 * 16.0
     });
-    let total = elastic + dry + fields + ehl + frames + stress;
+    // a transient run's passage maps: accumulators on the body-frame grid x the window layers
+    let passage = stress::passage_memory(case);
+    let total = elastic + dry + fields + ehl + frames + stress + passage;
     MemoryEstimate {
         bytes: total,
         key: if frames > 0.5 * total {
             "output.frames_every"
+        } else if passage > 0.5 * total {
+            "stress.window"
         } else if stress > 0.5 * total {
             "stress.layers"
         } else if ny > nx {
@@ -255,6 +259,18 @@ pub fn check_memory(
             est.key.to_string(),
             format!(
                 "the frames kept of a transient run on {} x {} cells need about {:.2} GB in all (estimate), more than the {:.2} GB of {source}; keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+                case.grid.nx,
+                case.grid.ny,
+                est.bytes / 1e9,
+                limit / 1e9
+            ),
+        ));
+    }
+    if est.key == "stress.window" {
+        return Err((
+            est.key.to_string(),
+            format!(
+                "the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {} x {} cells extended by the travel, times the window's layers) need about {:.2} GB in all (estimate), more than the {:.2} GB of {source}; take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (37 of the 40 f32 per point), shorten motion.travel, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
                 case.grid.nx,
                 case.grid.ny,
                 est.bytes / 1e9,

@@ -3,9 +3,11 @@
 
 use crate::case::{Case, Kind};
 use crate::grid::Grid;
-use crate::solution::{Solution, StressFigures, Summary};
+use crate::solution::{PassageFigures, Solution, StressFigures, Summary};
+use crate::stress::passage::Passage;
 use crate::stress::BodyStress;
 use crate::Result;
+use std::time::Instant;
 
 /// The stress of a solved case.
 #[derive(Debug, Clone)]
@@ -45,41 +47,13 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
     let line = case.is_infinite_line();
     let (pressure, film, step) = loads(solution);
     let pressure: Vec<f64> = pressure.iter().map(|p| p.max(0.0)).collect();
-    let tractions: Option<[Vec<f64>; 2]> = match case.kind {
-        Kind::Dry => (spec.friction != 0.0).then(|| {
-            let q: Vec<f64> = pressure.iter().map(|p| spec.friction * p).collect();
-            [q.clone(), q.iter().map(|v| -v).collect()]
-        }),
-        Kind::Ehl => {
-            let (motion, lub) = (case.motion.as_ref(), case.lubricant.as_ref());
-            match (motion, lub, film) {
-                (Some(m), Some(lub), Some(film)) => {
-                    let viscosity: Vec<f64> = pressure
-                        .iter()
-                        .map(|&p| crate::lubricant::viscosity::viscosity(lub, p))
-                        .collect();
-                    let input = crate::friction::FrictionInput {
-                        grid: &grid,
-                        pressure: &pressure,
-                        film: &film,
-                        viscosity: &viscosity,
-                        u1: m.u1(),
-                        u2: m.u2(),
-                        rheology: &lub.rheology,
-                        load: 1.0,
-                    };
-                    match crate::friction::surface_tractions(&input) {
-                        Ok(t) => Some(t),
-                        Err(e) => {
-                            warnings.push(format!(
-                                "stress computed without the surface shear: the lubricant's shear stress could not be formed ({e})"
-                            ));
-                            None
-                        }
-                    }
-                }
-                _ => None,
-            }
+    let tractions = match tractions(case, &grid, &pressure, film.as_deref(), None) {
+        Ok(t) => t,
+        Err(e) => {
+            warnings.push(format!(
+                "stress computed without the surface shear: the lubricant's shear stress could not be formed ({e})"
+            ));
+            None
         }
     };
     let dy = if line { f64::INFINITY } else { grid.dy };
@@ -99,6 +73,277 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
         step,
         with_traction: tractions.is_some(),
     }))
+}
+
+/// The shear traction along +x on each body ([body 1, body 2], Pa) for the (non-negative)
+/// `pressure` on `grid`: a dry run's Coulomb traction (`stress.friction`, None when 0), an EHL
+/// run's lubricant drag ([`crate::friction::surface_tractions`]) from the `film` and the
+/// `viscosity` (None: formed from the pressure with the case's viscosity model). Err: the
+/// lubricant's shear stress could not be formed.
+pub fn tractions(
+    case: &Case,
+    grid: &Grid,
+    pressure: &[f64],
+    film: Option<&[f64]>,
+    viscosity: Option<&[f64]>,
+) -> Result<Option<[Vec<f64>; 2]>> {
+    let Some(spec) = &case.stress else {
+        return Ok(None);
+    };
+    match case.kind {
+        Kind::Dry => Ok((spec.friction != 0.0).then(|| {
+            let q: Vec<f64> = pressure.iter().map(|p| spec.friction * p).collect();
+            [q.clone(), q.iter().map(|v| -v).collect()]
+        })),
+        Kind::Ehl => {
+            let (motion, lub) = (case.motion.as_ref(), case.lubricant.as_ref());
+            let (Some(m), Some(lub), Some(film)) = (motion, lub, film) else {
+                return Ok(None);
+            };
+            let formed;
+            let viscosity = match viscosity {
+                Some(v) => v,
+                None => {
+                    formed = pressure
+                        .iter()
+                        .map(|&p| crate::lubricant::viscosity::viscosity(lub, p))
+                        .collect::<Vec<f64>>();
+                    &formed
+                }
+            };
+            let input = crate::friction::FrictionInput {
+                grid,
+                pressure,
+                film,
+                viscosity,
+                u1: m.u1(),
+                u2: m.u2(),
+                rheology: &lub.rheology,
+                load: 1.0,
+            };
+            crate::friction::surface_tractions(&input).map(Some)
+        }
+    }
+}
+
+/// One evaluation's surface loads kept for the Dang Van second pass: time (s), pressure (Pa),
+/// the tractions on [body 1, body 2] (Pa), f32.
+type KeptLoads = (f64, Vec<f32>, Option<[Vec<f32>; 2]>);
+
+/// The stress history of a transient run with `[stress]` in the material frame of each chosen
+/// body ([`crate::stress::passage`]): the accumulators and how they were fed.
+#[derive(Debug, Clone)]
+pub struct PassageRun {
+    /// one per chosen body (`stress.body`), in order
+    pub passages: Vec<Passage>,
+    /// every k-th step is evaluated (and the last): [`passage_every`]
+    pub every: usize,
+    /// evaluations left out because their step did not converge
+    pub skipped_steps: Vec<usize>,
+    /// wall time of the stress fields and of the accumulation (s)
+    pub field_seconds: f64,
+    pub accumulate_seconds: f64,
+    /// the first failure to form the lubricant's shear traction (the step's stress is then
+    /// frictionless)
+    pub traction_failure: Option<(usize, String)>,
+    /// `fatigue.dang_van`: the surface loads of each evaluation (time s, pressure Pa, the
+    /// tractions of [body 1, body 2] Pa, f32) for the second pass ([`Self::finish`]); emptied
+    /// by it
+    loads: Vec<KeptLoads>,
+    /// wall time of the Dang Van second pass (s)
+    pub dang_van_seconds: f64,
+    poisson: [f64; 2],
+    line: bool,
+}
+
+/// The evaluation stride of the passage maps: the largest k for which neither body's material
+/// points nor the features (both move with a surface) travel more than one cell dx between two
+/// evaluations, k = max(1, floor(dx / (max(|u1|, |u2|) dt))). Sampling every step would add
+/// points closer than the grid resolves.
+pub fn passage_every(dx: f64, dt: f64, speeds: [f64; 2]) -> usize {
+    let v = speeds[0].abs().max(speeds[1].abs()) * dt;
+    if !(v > 0.0) {
+        return 1;
+    }
+    ((dx / v) * (1.0 + 1e-9)).floor().max(1.0) as usize
+}
+
+/// Bytes of the passage maps of a transient case with `[stress]` (0 otherwise): per chosen body
+/// the accumulators on nx_body x ny x window layers ([`crate::stress::passage::bytes`]), the
+/// window's stress field of a step (6 f32 components) and the finished maps (3 f32); with
+/// `fatigue.dang_van` the surface loads kept for the second pass, 3 f32 per cell per
+/// evaluation (pressure and both tractions).
+pub fn passage_memory(case: &Case) -> f64 {
+    let (Some(spec), Some(kin), Some(m)) =
+        (&case.stress, super::transient::kinematics(case), case.motion.as_ref())
+    else {
+        return 0.0;
+    };
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let dx = (g.x_max - g.x_min) / nx as f64;
+    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let layers = spec.window_depths(dx, dy).len();
+    let dv = case.fatigue.is_some_and(|f| f.dang_van.is_some());
+    let duration = kin.steps as f64 * kin.dt;
+    spec.bodies
+        .iter()
+        .map(|&k| {
+            let u = if k == 2 { m.u2() } else { m.u1() };
+            let cols = crate::stress::passage::body_columns(nx, dx, u, duration);
+            let points = cols * ny * layers;
+            crate::stress::passage::bytes(points, dv) + 3.0 * 4.0 * points as f64
+        })
+        .sum::<f64>()
+        + crate::stress::field::field_bytes(nx * ny, layers, 0)
+        + if dv {
+            let dx_t = kin.dt;
+            let every = passage_every(dx, dx_t, [m.u1(), m.u2()]);
+            (kin.steps / every + 2) as f64 * 3.0 * 4.0 * (nx * ny) as f64
+        } else {
+            0.0
+        }
+}
+
+impl PassageRun {
+    /// The accumulators of a transient `case` with `[stress]` on `grid`, for a run of
+    /// `steps` steps of `dt` (s); None for a case without `[stress]`.
+    pub fn new(case: &Case, grid: &Grid, steps: usize, dt: f64) -> Option<Self> {
+        let spec = case.stress.as_ref()?;
+        let m = case.motion.as_ref()?;
+        let line = case.is_infinite_line();
+        let dy = if line { f64::INFINITY } else { grid.dy };
+        let z = spec.window_depths(grid.dx, dy);
+        let dv = case.fatigue.and_then(|f| f.dang_van);
+        let duration = steps as f64 * dt;
+        let speeds = [m.u1(), m.u2()];
+        let passages = spec
+            .bodies
+            .iter()
+            .map(|&k| Passage::new(k, grid, speeds[k as usize - 1], duration, &z, dv))
+            .collect();
+        Some(PassageRun {
+            passages,
+            every: passage_every(grid.dx, dt, speeds),
+            skipped_steps: Vec::new(),
+            field_seconds: 0.0,
+            accumulate_seconds: 0.0,
+            traction_failure: None,
+            loads: Vec::new(),
+            dang_van_seconds: 0.0,
+            poisson: [case.body1.poisson_ratio, case.body2.poisson_ratio],
+            line,
+        })
+    }
+
+    /// Feeds step `step` of `last` (time `t`, s) when it is one to evaluate: its stress on the
+    /// window layers of each chosen body, from the pressure and the lubricant's traction.
+    #[allow(clippy::too_many_arguments)]
+    pub fn step(
+        &mut self,
+        case: &Case,
+        grid: &Grid,
+        step: usize,
+        last: usize,
+        t: f64,
+        converged: bool,
+        pressure: &[f64],
+        film: &[f64],
+        viscosity: &[f64],
+    ) {
+        if !(step.is_multiple_of(self.every) || step == last) {
+            return;
+        }
+        if !converged {
+            self.skipped_steps.push(step);
+            return;
+        }
+        let start = Instant::now();
+        let pressure: Vec<f64> = pressure.iter().map(|p| p.max(0.0)).collect();
+        let q = match tractions(case, grid, &pressure, Some(film), Some(viscosity)) {
+            Ok(q) => q,
+            Err(e) => {
+                self.traction_failure.get_or_insert((step, e.to_string()));
+                None
+            }
+        };
+        let mut acc_s = 0.0;
+        for p in self.passages.iter_mut() {
+            let k = p.body as usize - 1;
+            let traction = q.as_ref().map(|q| q[k].as_slice());
+            let field = crate::stress::field::stress_field(grid, &pressure, traction, self.poisson[k], &p.z, self.line);
+            let t1 = Instant::now();
+            p.accumulate(&field, t);
+            acc_s += t1.elapsed().as_secs_f64();
+        }
+        // the tractions and the fields; the accumulation apart
+        self.field_seconds += start.elapsed().as_secs_f64() - acc_s;
+        self.accumulate_seconds += acc_s;
+        if self.passages.iter().any(|p| p.dang_van.is_some()) {
+            let f32s = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
+            self.loads.push((t, f32s(&pressure), q.as_ref().map(|q| [f32s(&q[0]), f32s(&q[1])])));
+        }
+    }
+
+    /// The Dang Van second pass over the kept loads (nothing without `fatigue.dang_van`): each
+    /// evaluation's field again, now that every point's mid-value is known; frees the loads.
+    pub fn finish(&mut self, grid: &Grid) {
+        let start = Instant::now();
+        let loads = std::mem::take(&mut self.loads);
+        for (t, p, q) in &loads {
+            let p: Vec<f64> = p.iter().map(|&v| v as f64).collect();
+            for ps in self.passages.iter_mut() {
+                let k = ps.body as usize - 1;
+                let traction: Option<Vec<f64>> = q.as_ref().map(|q| q[k].iter().map(|&v| v as f64).collect());
+                let field = crate::stress::field::stress_field(grid, &p, traction.as_deref(), self.poisson[k], &ps.z, self.line);
+                ps.dang_van_pass(&field, *t);
+            }
+        }
+        self.dang_van_seconds += start.elapsed().as_secs_f64();
+    }
+}
+
+/// The passage figures of each body: the maxima of its maps and where they are (body frame).
+pub fn passage_figures(run: &PassageRun) -> Vec<PassageFigures> {
+    run.passages
+        .iter()
+        .map(|p| {
+            let maps = p.maps();
+            let (nxb, ny) = (p.nx_body, p.grid.ny);
+            let at = |idx: usize| {
+                let m = idx % nxb;
+                let j = (idx / nxb) % ny;
+                let k = idx / (nxb * ny);
+                [p.x_body(m), p.grid.y(j), p.z[k]]
+            };
+            let peak = |v: &[f32]| {
+                let mut best: Option<(usize, f32)> = None;
+                for (i, &x) in v.iter().enumerate() {
+                    if x.is_finite() && best.is_none_or(|b| x > b.1) {
+                        best = Some((i, x));
+                    }
+                }
+                best.map(|(i, x)| (x as f64, at(i)))
+            };
+            let vm = peak(&maps.max_von_mises);
+            let tr = peak(&maps.tau_xz_range);
+            let dv = maps.dang_van.as_deref().and_then(peak);
+            PassageFigures {
+                body: p.body,
+                max_von_mises_pa: vm.map(|v| v.0),
+                max_von_mises_at_m: vm.map(|v| v.1),
+                max_tau_xz_range_pa: tr.map(|v| v.0),
+                max_tau_xz_range_at_m: tr.map(|v| v.1),
+                max_dang_van: dv.map(|v| v.0),
+                max_dang_van_at_m: dv.map(|v| v.1),
+                evaluations: p.evaluations,
+                every_steps: run.every,
+                window_m: p.z.last().copied().unwrap_or(0.0),
+                layers: p.z.len(),
+                memory_bytes: p.memory_bytes(),
+            }
+        })
+        .collect()
 }
 
 /// Fills the stress and fatigue keys of `summary` from `analysis`: the maxima over the bodies,
@@ -153,6 +398,35 @@ pub fn summarise(case: &Case, analysis: &StressAnalysis, summary: &mut Summary) 
     summary.fatigue_integral = case.fatigue.map(|_| total);
     summary.stress_at_xp_m = analysis.step.map(|s| s.1);
     summary.stress = Some(per_body);
+}
+
+/// The passage keys of `summary` and their warnings (skipped steps, frictionless steps, a
+/// Dang Van indicator above 1).
+pub fn summarise_passage(run: &PassageRun, summary: &mut Summary) {
+    let figures = passage_figures(run);
+    for f in &figures {
+        if let (Some(dv), Some(at)) = (f.max_dang_van, f.max_dang_van_at_m) {
+            if dv > 1.0 {
+                summary.warnings.push(format!(
+                    "the Dang Van indicator of body {} reaches {dv:.3} > 1 at x_body = {:.4e} m, z = {:.3e} m: the fatigue limit of fatigue.dang_van is crossed there",
+                    f.body, at[0], at[2]
+                ));
+            }
+        }
+    }
+    if !run.skipped_steps.is_empty() {
+        summary.warnings.push(format!(
+            "the passage maps leave out {} evaluation step(s) that did not converge (first: step {})",
+            run.skipped_steps.len(),
+            run.skipped_steps[0]
+        ));
+    }
+    if let Some((step, e)) = &run.traction_failure {
+        summary.warnings.push(format!(
+            "the passage maps use a frictionless stress at the step(s) where the lubricant's shear stress could not be formed (first: step {step}: {e})"
+        ));
+    }
+    summary.passage = Some(figures);
 }
 
 /// The same case with smooth surfaces, solved steadily: the reference of the life ratio.

@@ -215,6 +215,8 @@ pub(super) fn solve(
         frames_every: ctx.frames_every,
         ..TransientRecord::default()
     };
+    // [stress]: the stress history in each chosen body's material frame
+    let mut passage = super::stress::PassageRun::new(case, &grid, kin.steps, kin.dt);
     let mut last: Option<StepResult> = None;
     let mut friction_failures = 0usize;
     let mut first_failure: Option<(usize, String)> = None;
@@ -302,6 +304,19 @@ pub(super) fn solve(
                 pressure: s.pressure.clone(),
                 film: s.film.iter().map(|&h| h.max(0.0)).collect(),
             });
+        }
+        if let Some(pr) = passage.as_mut() {
+            pr.step(
+                case,
+                &grid,
+                s.step,
+                steps,
+                s.time,
+                s.converged,
+                &s.pressure,
+                &s.film,
+                &s.viscosity,
+            );
         }
         for &(x, k) in &snapshot_steps {
             if k == s.step {
@@ -406,6 +421,12 @@ pub(super) fn solve(
             .fold(0.0, f64::max),
     );
     summary.failed_steps = Some(failed_steps);
+    if let Some(pr) = passage.as_mut() {
+        progress.report(f64::NAN, "passage maps: Dang Van second pass");
+        pr.finish(&grid);
+        super::stress::summarise_passage(pr, &mut summary);
+    }
+    record.passage = passage;
     Ok(Solution {
         stress: None,
         temperature: None,

@@ -49,6 +49,9 @@ pub struct Params {
     pub stress_exponent: f64,
     /// h
     pub depth_exponent: f64,
+    /// `fatigue.dang_van`: the Dang Van indicator over the passage of a transient run
+    /// ([`super::passage`]); None: not computed
+    pub dang_van: Option<super::passage::DangVan>,
 }
 
 impl Default for Params {
@@ -59,6 +62,7 @@ impl Default for Params {
             weibull_slope: 1.1,
             stress_exponent: 31.0 / 3.0,
             depth_exponent: 0.0,
+            dang_van: None,
         }
     }
 }

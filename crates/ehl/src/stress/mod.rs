@@ -31,11 +31,14 @@
 //! * [`field`]: the DC-FFT field on a depth grid.
 //! * [`derived`]: von Mises, principal stresses, maximum shear (Tresca), hydrostatic.
 //! * [`fatigue`]: Ioannides-Harris integral and life ratio.
+//! * [`passage`]: the history of a transient run in a moving body's material frame: max-over-
+//!   passage von Mises, range of tau_xz, Dang Van.
 
 pub mod derived;
 pub mod fatigue;
 pub mod field;
 pub mod kernel;
+pub mod passage;
 
 use crate::grid::Grid;
 use field::StressField;
