@@ -14,7 +14,7 @@
 use ehl::run::cancel::{self, CancelToken};
 use numpy::ndarray::ArrayView2;
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
@@ -69,6 +69,18 @@ fn case_err(py: Python<'_>, file: &str, key: &str, reason: String) -> PyErr {
             message: reason,
         },
     )
+}
+
+/// A case that another thread is changing (a borrow error) as a `RuntimeError` that says so,
+/// not a panic. With the GIL held while a case is changed (see `Case.set`) it does not happen
+/// with Python's threads; the check stays for safety.
+fn busy<T>(r: Result<T, impl std::fmt::Display>) -> PyResult<T> {
+    r.map_err(|e| {
+        PyRuntimeError::new_err(format!(
+            "ehl.Case is being changed by another thread ({e}); use one case per thread \
+             (case.copy()) or a lock"
+        ))
+    })
 }
 
 // ------------------------------------------------------------------ Python <-> TOML
@@ -310,8 +322,16 @@ impl PyCase {
     /// `case.set("load.force", 5000)`, `case.set("features[0].depth", 1e-7)`,
     /// `case.set("body1.profile", {"kind": "crowned", "crown_radius": 0.5})`. The case is
     /// validated again; on an error (`CaseError` naming the key) it is left unchanged.
-    fn set(&mut self, py: Python<'_>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let v = to_toml(value, key).map_err(|m| case_err(py, &self.file, key, m))?;
+    ///
+    /// Threads: the value is converted first (that may run Python code: `tolist`,
+    /// `__fspath__`, `__repr__`) with no borrow of the case held; the case is then borrowed
+    /// only while it is parsed again, with the GIL held (parsing takes milliseconds), so no
+    /// other Python thread can meet the case borrowed (e.g. `solve(case)` in another thread:
+    /// before, `set` released the GIL while parsing and such a `solve` panicked).
+    fn set(slf: &Bound<'_, Self>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let py = slf.py();
+        let file = busy(slf.try_borrow())?.file.clone();
+        let v = to_toml(value, key).map_err(|m| case_err(py, &file, key, m))?;
         let text = match &v {
             toml::Value::Table(t) => {
                 // inline-table form of a table value
@@ -323,23 +343,31 @@ impl PyCase {
             }
             other => other.to_string(),
         };
-        let mut overrides = self.overrides.clone();
         let assignment = format!("{key}={text}");
-        overrides.push(assignment.clone());
         // the library's messages say where an override came from in the CLI's words
         let cli = format!(" (in --set {assignment})");
         let ours = format!(" (in Case.set({key:?}, {}))", value.repr()?);
-        let next = match py.detach(|| ehl::case::parse_str(&self.text, &self.file, &overrides)) {
-            Ok(case) => case,
-            Err(ehl::Error::Case { file, key, message }) => {
-                let message = message.replace(&cli, &ours);
-                return Err(py_err(py, ehl::Error::Case { file, key, message }));
+        // from here on no Python code runs and the GIL stays held
+        let mut this = busy(slf.try_borrow_mut())?;
+        let mut overrides = this.overrides.clone();
+        overrides.push(assignment);
+        match ehl::case::parse_str(&this.text, &this.file, &overrides) {
+            Ok(next) => {
+                this.overrides = overrides;
+                this.case = next;
+                Ok(())
             }
-            Err(e) => return Err(py_err(py, e)),
-        };
-        self.overrides = overrides;
-        self.case = next;
-        Ok(())
+            Err(e) => {
+                drop(this); // (making the exception runs Python code)
+                Err(match e {
+                    ehl::Error::Case { file, key, message } => {
+                        let message = message.replace(&cli, &ours);
+                        py_err(py, ehl::Error::Case { file, key, message })
+                    }
+                    e => py_err(py, e),
+                })
+            }
+        }
     }
 
     /// The value of a dotted key as set in the case file or by `set` (not the defaults: see
@@ -845,7 +873,7 @@ fn _solve(
     callback: Option<Bound<'_, PyAny>>,
     poll: f64,
 ) -> PyResult<PySolution> {
-    let case = case.borrow().clone();
+    let case = busy(case.try_borrow())?.clone();
     let token = CancelToken::new();
     let reporter = Reporter::default();
     let poll = Duration::from_secs_f64(poll.clamp(0.001, 1.0));

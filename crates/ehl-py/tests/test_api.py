@@ -3,6 +3,8 @@
 import copy
 import json
 import math
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -94,6 +96,40 @@ def test_a_bad_key_raises_case_error_naming_the_key():
         ehl.Case.from_file("no/such/case.toml")
     # CaseError is a ValueError, and every error an EhlError
     assert issubclass(ehl.CaseError, ValueError) and issubclass(ehl.CaseError, ehl.EhlError)
+
+
+def test_set_and_solve_in_two_threads_raise_no_panic():
+    """One thread changes a case while others solve and read it: no PanicException (Case.set
+    used to release the GIL while parsing, and a solve meeting the case borrowed panicked)."""
+    case = ehl.Case.from_file(example("dry_ball_on_flat.toml"))
+    case.set("grid.nx", 16)
+    case.set("grid.ny", 16)
+    errors = []
+    stop = threading.Event()
+
+    def guarded(f):
+        def run():
+            try:
+                while not stop.is_set():
+                    f()
+            except BaseException as e:  # PanicException is a BaseException
+                errors.append(e)
+                stop.set()
+        return run
+
+    loads = iter(range(10**9))
+    threads = [
+        threading.Thread(target=guarded(lambda: case.set("load.force", 100.0 + next(loads) % 7))),
+        threading.Thread(target=guarded(lambda: ehl.solve(case, progress=False))),
+        threading.Thread(target=guarded(lambda: (case.check(), case.get("load.force")))),
+    ]
+    for t in threads:
+        t.start()
+    time.sleep(1.5)
+    stop.set()
+    for t in threads:
+        t.join()
+    assert not errors, repr(errors)
 
 
 def test_copy_is_independent():
