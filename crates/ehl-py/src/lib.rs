@@ -589,7 +589,7 @@ fn toml_key(k: &str) -> String {
 // ------------------------------------------------------------------ Solution
 
 /// A solved case: the library's solution and the case it came from. Immutable.
-#[pyclass(module = "ehl", name = "Solution", frozen)]
+#[pyclass(module = "ehl", name = "Solution", frozen, weakref)]
 struct PySolution {
     case: PyCase,
     sol: ehl::solution::Solution,
