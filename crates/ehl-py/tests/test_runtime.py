@@ -202,13 +202,19 @@ def free_cores_for_two() -> float:
     return both / alone
 
 
+# The least share of a second core at which the comparison still means something (see the
+# bound in the test).
+LEAST_CAPACITY = 1.25
+
+
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs two cores")
 def test_two_threads_solve_two_cases_faster_than_one():
-    capacity = free_cores_for_two()
-    if capacity < 1.6:
+    before = free_cores_for_two()
+    if before < LEAST_CAPACITY:
         pytest.skip(
-            f"two processes get only {capacity:.2f} cores here (another program is busy): "
-            "no machine to measure threads on"
+            f"two processes get only {before:.2f} cores here (other programs keep the "
+            f"machine busy; {LEAST_CAPACITY} needed): two threads could not gain enough over "
+            "one to tell a released GIL from a held one"
         )
     env = dict(os.environ, RAYON_NUM_THREADS="1")
     r = subprocess.run(
@@ -220,8 +226,27 @@ def test_two_threads_solve_two_cases_faster_than_one():
     )
     assert r.returncode == 0, r.stderr
     serial, parallel = map(float, r.stdout.split())
-    print(f"one thread: {serial:.3f} s, two threads: {parallel:.3f} s")
-    assert parallel < 0.8 * serial, (serial, parallel)
+    # the load of the other programs drifts: measure again, and take the smaller of the two
+    capacity = min(before, free_cores_for_two())
+    # The bound. With the GIL released two threads on `capacity` free cores take serial /
+    # capacity at best; with it held they take turns and need at least `serial`. The bound
+    # asks for half of the ideal gain, serial * (1 + 1/capacity) / 2 (0.75 serial on two
+    # free cores), times 1.15 for what best-of-three runs do not absorb: the capacity is
+    # measured before and after the solves, not during them, and the other sessions' load
+    # changes within seconds. It never exceeds 0.95 serial: at or above `serial` the test
+    # could not fail with the GIL held (on 1.25 to 1.35 free cores the cap applies, and a
+    # released GIL still gives ~0.8 serial there).
+    bound = serial * min(1.15 * (1 + 1 / capacity) / 2, 0.95)
+    print(
+        f"{capacity:.2f} free cores: one thread {serial:.3f} s, two threads {parallel:.3f} s "
+        f"(bound {bound:.3f} s)"
+    )
+    if capacity < LEAST_CAPACITY:
+        pytest.skip(
+            f"the machine got busier during the test ({capacity:.2f} free cores after it; "
+            f"{LEAST_CAPACITY} needed): one thread {serial:.3f} s, two {parallel:.3f} s"
+        )
+    assert parallel < bound, (capacity, serial, parallel, bound)
 
 
 @pytest.mark.skipif(threading.current_thread() is not threading.main_thread(), reason="signals")
