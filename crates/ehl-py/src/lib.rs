@@ -86,20 +86,22 @@ fn busy<T>(r: Result<T, impl std::fmt::Display>) -> PyResult<T> {
 // ------------------------------------------------------------------ Python <-> TOML
 
 /// A Python value as a TOML value: bool, int, float (numpy scalars too), str, os.PathLike,
-/// dict, list, tuple, numpy arrays. `key` names the place in messages.
-fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
+/// dict, list, tuple, numpy arrays. `key` names the place in messages; an error carries the
+/// dotted path of the value that has no case-file form (`features[1].depth`) and the reason.
+fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, String)> {
     use toml::Value;
+    let fail = |m: String| (key.to_string(), m);
     if v.is_instance_of::<PyBool>() {
-        return Ok(Value::Boolean(v.extract::<bool>().map_err(|e| e.to_string())?));
+        return Ok(Value::Boolean(v.extract::<bool>().map_err(|e| fail(e.to_string()))?));
     }
     if v.is_instance_of::<PyInt>() {
         return match v.extract::<i64>() {
             Ok(i) => Ok(Value::Integer(i)),
-            Err(_) => Ok(Value::Float(v.extract::<f64>().map_err(|e| e.to_string())?)),
+            Err(_) => Ok(Value::Float(v.extract::<f64>().map_err(|e| fail(e.to_string()))?)),
         };
     }
     if v.is_instance_of::<PyFloat>() {
-        return Ok(Value::Float(v.extract::<f64>().map_err(|e| e.to_string())?));
+        return Ok(Value::Float(v.extract::<f64>().map_err(|e| fail(e.to_string()))?));
     }
     if let Ok(s) = v.cast::<PyString>() {
         return Ok(Value::String(s.to_string()));
@@ -108,7 +110,12 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
         let mut t = toml::Table::new();
         for (k, item) in d.iter() {
             let Ok(name) = k.extract::<String>() else {
-                return Err(format!("`{key}` has a key {k} that is not a string"));
+                let place = if key.is_empty() {
+                    "the case dict".to_string()
+                } else {
+                    format!("`{key}`")
+                };
+                return Err(fail(format!("{place} has a key {k} that is not a string")));
             };
             let sub = if key.is_empty() {
                 name.clone()
@@ -124,16 +131,16 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut items = Vec::new();
-        for (i, item) in v.try_iter().map_err(|e| e.to_string())?.enumerate() {
-            let item = item.map_err(|e| e.to_string())?;
+        for (i, item) in v.try_iter().map_err(|e| fail(e.to_string()))?.enumerate() {
+            let item = item.map_err(|e| fail(e.to_string()))?;
             items.push(to_toml(&item, &format!("{key}[{i}]"))?);
         }
         return Ok(Value::Array(items));
     }
     if v.is_none() {
-        return Err(format!(
+        return Err(fail(format!(
             "`{key}` is None; give a value, or leave the key out for its default"
-        ));
+        )));
     }
     let type_name = v
         .get_type()
@@ -166,9 +173,9 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
     if let Ok(f) = v.extract::<f64>() {
         return Ok(Value::Float(f));
     }
-    Err(format!(
+    Err(fail(format!(
         "`{key}` is a Python {type_name}, which has no case-file form (give a number, bool, str, dict or list)"
-    ))
+    )))
 }
 
 /// A TOML value as a Python object (tables as dicts, arrays as lists).
@@ -311,7 +318,14 @@ impl PyCase {
     #[staticmethod]
     #[pyo3(signature = (d, file = "<dict>".to_string()))]
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyDict>, file: String) -> PyResult<Self> {
-        let v = to_toml(d.as_any(), "").map_err(|m| case_err(py, &file, "", m))?;
+        let v = to_toml(d.as_any(), "").map_err(|(key, message)| {
+            if key.is_empty() {
+                // the dict as a whole (a key that is not a string): no key to name
+                py_err(py, ehl::Error::CaseFile { file: file.clone(), message })
+            } else {
+                case_err(py, &file, &key, message)
+            }
+        })?;
         let toml::Value::Table(t) = v else {
             unreachable!("a dict converts to a table")
         };
@@ -331,7 +345,7 @@ impl PyCase {
     fn set(slf: &Bound<'_, Self>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         let py = slf.py();
         let file = busy(slf.try_borrow())?.file.clone();
-        let v = to_toml(value, key).map_err(|m| case_err(py, &file, key, m))?;
+        let v = to_toml(value, key).map_err(|(k, m)| case_err(py, &file, &k, m))?;
         let text = match &v {
             toml::Value::Table(t) => {
                 // inline-table form of a table value

@@ -89,6 +89,20 @@ def test_a_bad_key_raises_case_error_naming_the_key():
     with pytest.raises(ehl.CaseError) as e:
         ehl.Case.from_dict(d)
     assert e.value.key == "lubricant.viscosty" and e.value.file == "<dict>"
+    # a value with no case-file form names its key, also inside a list of tables
+    d = c.to_dict()
+    d["load"]["force"] = object()
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict(d)
+    assert e.value.key == "load.force" and "load.force" in str(e.value)
+    d = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml")).to_dict()
+    d["features"][0]["depth"] = {1: 2}
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict(d)
+    assert e.value.key == "features[0].depth"
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict({1: 2})
+    assert e.value.key is None and "not a string" in e.value.reason
     with pytest.raises(ehl.CaseError) as e:
         ehl.Case.from_toml("kind = ")
     assert e.value.key is None and "TOML" in e.value.reason
