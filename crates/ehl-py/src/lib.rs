@@ -9,7 +9,8 @@
 //! Threads: a solve runs on a thread of its own with the GIL released; the calling thread
 //! waits in steps of `poll` seconds, and between them (holding the GIL) checks for signals
 //! (Ctrl-C: the solve is cancelled and KeyboardInterrupt raised) and passes the latest progress
-//! report to the Python callback.
+//! report to the Python callback. Python delivers Ctrl-C to the main thread only: solves in
+//! other threads stop through `cancel_all` (every running solve's token is in a registry).
 
 use ehl::run::cancel::{self, CancelToken};
 use numpy::ndarray::ArrayView2;
@@ -875,6 +876,47 @@ impl Reporter {
     }
 }
 
+/// The tokens of the solves running now in this process (any thread), by a number of their
+/// own: `cancel_all` cancels them. A solve registers its token when it starts and removes it
+/// when it ends (`Registered`'s drop, also on an error or a panic).
+static LIVE: Mutex<Vec<(u64, CancelToken)>> = Mutex::new(Vec::new());
+static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A token in `LIVE` for as long as this value lives.
+struct Registered(u64);
+
+impl Registered {
+    fn new(token: &CancelToken) -> Self {
+        let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        live().push((id, token.clone()));
+        Registered(id)
+    }
+}
+
+impl Drop for Registered {
+    fn drop(&mut self) {
+        live().retain(|(id, _)| *id != self.0);
+    }
+}
+
+/// `LIVE`, locked (a panic while it was held cannot leave it inconsistent: push and retain).
+fn live() -> std::sync::MutexGuard<'static, Vec<(u64, CancelToken)>> {
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Cancels every solve running now in this process, in any thread; returns how many. Each
+/// stops within a solver iteration and raises KeyboardInterrupt in its own thread. Solves
+/// started later are not affected. For Ctrl-C with solves in worker threads (Python delivers
+/// the signal to the main thread only): `except KeyboardInterrupt: ehl.cancel_all(); raise`.
+#[pyfunction]
+fn cancel_all() -> usize {
+    let live = live();
+    for (_, t) in live.iter() {
+        t.cancel();
+    }
+    live.len()
+}
+
 /// Solves `case` with the GIL released (see the module documentation). `callback(fraction,
 /// message)` receives progress reports, at most one per `poll` seconds. Ctrl-C (a signal seen
 /// by the main thread) or an exception raised by the callback cancels the solve: the error is
@@ -889,6 +931,7 @@ fn _solve(
 ) -> PyResult<PySolution> {
     let case = busy(case.try_borrow())?.clone();
     let token = CancelToken::new();
+    let _registered = Registered::new(&token);
     let reporter = Reporter::default();
     let poll = Duration::from_secs_f64(poll.clamp(0.001, 1.0));
     let (tx, rx) = mpsc::channel();
@@ -964,6 +1007,7 @@ fn _ehl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCase>()?;
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(cancel_all, m)?)?;
     m.add("__version__", ehl::VERSION)?;
     Ok(())
 }

@@ -11,6 +11,7 @@ import textwrap
 import threading
 import time
 import weakref
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -281,4 +282,31 @@ def test_sigint_stops_a_long_solve_promptly(tmp_path):
     assert late < 1.0, f"KeyboardInterrupt came {late:.2f} s after SIGINT"
     # nothing was written and the next solve works
     assert list(tmp_path.iterdir()) == []
+    assert ehl.solve(tiny(), progress=False).converged
+
+
+def test_cancel_all_stops_a_solve_in_a_worker_thread():
+    """Ctrl-C reaches the main thread only: `ehl.cancel_all()` stops the solves of worker
+    threads (the pattern `except KeyboardInterrupt: ehl.cancel_all(); raise`)."""
+    case = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
+    case.set("grid.nx", 64)
+    case.set("grid.ny", 64)
+    case.set("motion.travel", {"from": -1.0e-3, "to": 1.0e-3, "steps": 2000})  # ~20 s
+    running = [threading.Event(), threading.Event()]
+    with ThreadPoolExecutor(2) as ex:
+        futures = [
+            ex.submit(ehl.solve, case, progress=lambda f, m, e=e: e.set()) for e in running
+        ]
+        assert all(e.wait(60) for e in running), "the solves did not start"
+        time.sleep(0.2)
+        start = time.perf_counter()
+        n = ehl.cancel_all()
+        for f in futures:
+            with pytest.raises(KeyboardInterrupt):
+                f.result(timeout=30)
+        late = time.perf_counter() - start
+    assert n == 2, f"cancel_all found {n} running solves"
+    assert late < 1.0, f"the solves stopped {late:.2f} s after cancel_all"
+    assert ehl.cancel_all() == 0, "a finished solve stayed in the registry"
+    # solves started later are not affected
     assert ehl.solve(tiny(), progress=False).converged

@@ -12,6 +12,16 @@ The Python face of the ``ehl`` solver (a Rust library), with the case-file model
 >>> sol.summary["min_film_m"], sol.pressure.shape   # summary.json, (ny, nx) arrays
 >>> sol.write("out/roller")                 # the outputs of `ehl run`
 
+Ctrl-C reaches the main thread only. Solves running in worker threads (a
+``ThreadPoolExecutor``) are stopped with :func:`cancel_all`::
+
+    with ThreadPoolExecutor() as ex:
+        try:
+            solutions = list(ex.map(ehl.solve, cases))
+        except KeyboardInterrupt:
+            ehl.cancel_all()  # every running solve stops within a solver iteration
+            raise
+
 The case-file format: docs/case-file.md of the repository.
 """
 
@@ -20,13 +30,14 @@ import sys
 from typing import Callable, Optional, Union
 
 from . import errors
-from ._ehl import Case, Solution, __version__, _solve
+from ._ehl import Case, Solution, __version__, _solve, cancel_all
 from .errors import CaseError, EhlError, OutputError, SolverError
 
 __all__ = [
     "Case",
     "Solution",
     "solve",
+    "cancel_all",
     "EhlError",
     "CaseError",
     "SolverError",
@@ -105,7 +116,8 @@ def solve(
     The GIL is released while solving, so threads (``concurrent.futures.ThreadPoolExecutor``)
     solve several cases at once. Ctrl-C (KeyboardInterrupt, also the notebook's interrupt
     button) stops the solve within a solver iteration and raises KeyboardInterrupt; nothing is
-    written. A solve that does not converge returns normally with ``converged == False`` (as
+    written. Python delivers Ctrl-C to the main thread only: a solve in another thread is
+    stopped by :func:`cancel_all` (and raises KeyboardInterrupt in its thread). A solve that does not converge returns normally with ``converged == False`` (as
     the CLI writes its outputs with exit status 3).
 
     progress: True (default) shows a tqdm progress bar when tqdm is installed and the output

@@ -116,6 +116,12 @@ class Solution:
         """Writes the outputs of ``ehl run`` into ``dir``, atomically (nothing half-written;
         ``dir`` replaced only if ehl wrote it or it is empty). Raises ``ehl.OutputError``."""
 
+def cancel_all() -> int:
+    """Cancels every solve running now in this process, in any thread, and returns how many.
+    Each stops within a solver iteration and raises KeyboardInterrupt in its own thread;
+    solves started later are not affected. Ctrl-C reaches the main thread only, so with
+    solves in worker threads: ``except KeyboardInterrupt: ehl.cancel_all(); raise``."""
+
 def _solve(
     case: Case,
     callback: Optional[Callable[[float, str], None]] = None,
