@@ -803,7 +803,10 @@ impl PySolution {
     /// Writes the outputs of `ehl run` into `dir` (summary.json, fields.npz, fields.vtk, the
     /// csv profiles, the pictures; transient runs add the timeline, frames, animation and
     /// snapshots). Atomic: the files go into a temporary folder that replaces `dir` only when
-    /// all are written; `dir` is replaced only if ehl wrote it (or it is empty). Returns `dir`.
+    /// all are written; `dir` is replaced only if ehl wrote it (or it is empty). Returns `dir`
+    /// (a `pathlib.Path`). Not interruptible: the GIL is released and no signal is checked
+    /// until the write has ended, so Ctrl-C raises KeyboardInterrupt only after it, with `dir`
+    /// complete (or, on an error, as it was).
     fn write(&self, py: Python<'_>, dir: PathBuf) -> PyResult<PathBuf> {
         py.detach(|| ehl::output::write_all(&dir, &self.case.case, &self.sol))
             .map_err(|e| py_err(py, e))?;

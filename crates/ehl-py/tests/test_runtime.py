@@ -251,7 +251,7 @@ def test_two_threads_solve_two_cases_faster_than_one():
 
 
 @pytest.mark.skipif(threading.current_thread() is not threading.main_thread(), reason="signals")
-def test_sigint_stops_a_long_solve_promptly(tmp_path):
+def test_sigint_stops_a_long_solve_promptly():
     case = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
     case.set("grid.nx", 64)
     case.set("grid.ny", 64)
@@ -280,9 +280,56 @@ def test_sigint_stops_a_long_solve_promptly(tmp_path):
         signal.signal(signal.SIGINT, previous)
     late = time.perf_counter() - sent[0]
     assert late < 1.0, f"KeyboardInterrupt came {late:.2f} s after SIGINT"
-    # nothing was written and the next solve works
-    assert list(tmp_path.iterdir()) == []
+    # the next solve works
     assert ehl.solve(tiny(), progress=False).converged
+
+
+@pytest.mark.skipif(threading.current_thread() is not threading.main_thread(), reason="signals")
+def test_sigint_during_write_leaves_the_folder_complete_or_absent(tmp_path):
+    """`Solution.write` is not interruptible (documented): Ctrl-C during it raises
+    KeyboardInterrupt once it has ended. Either way the folder is complete or absent, and
+    nothing else (no temporary folder) is left beside it."""
+    case = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
+    for k, v in (("grid.nx", 48), ("grid.ny", 48),
+                 ("motion.travel", {"from": -1.0e-3, "to": 1.0e-3, "steps": 20})):
+        case.set(k, v)
+    sol = ehl.solve(case, progress=False)
+    start = time.perf_counter()
+    whole = sol.write(tmp_path / "whole")  # an uninterrupted write, to compare with
+    took = time.perf_counter() - start
+    if took < 0.2:
+        pytest.skip(f"a write takes {took:.3f} s here, too short to interrupt")
+    expected = sorted(p.name for p in whole.iterdir())
+    sent = []
+    main = threading.main_thread().ident
+
+    def interrupt():
+        sent.append(time.perf_counter())
+        signal.pthread_kill(main, signal.SIGINT)
+
+    out = tmp_path / "out"
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(took / 4, interrupt)
+    caught = None
+    start = time.perf_counter()
+    timer.start()
+    try:
+        sol.write(out)
+        time.sleep(5)  # the interrupt lands in the write or, at the latest, here
+        pytest.fail("no KeyboardInterrupt")
+    except KeyboardInterrupt:
+        caught = time.perf_counter()
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+    assert sent, "no SIGINT was sent"
+    print(f"write {took:.2f} s; SIGINT at {sent[0] - start:.2f} s, "
+          f"KeyboardInterrupt at {caught - start:.2f} s")
+    if out.exists():
+        assert sorted(p.name for p in out.iterdir()) == expected, "a half-written folder"
+    assert sorted(p.name for p in tmp_path.iterdir()) in (["out", "whole"], ["whole"]), (
+        "something was left beside the output folder"
+    )
 
 
 def test_cancel_all_stops_a_solve_in_a_worker_thread():

@@ -114,7 +114,9 @@ class Solution:
         ``pressure``, ``film``, ``deformation``, ``viscosity``, ``density``); else None."""
     def write(self, dir: Union[str, "os.PathLike[str]"]) -> "os.PathLike[str]":
         """Writes the outputs of ``ehl run`` into ``dir``, atomically (nothing half-written;
-        ``dir`` replaced only if ehl wrote it or it is empty). Raises ``ehl.OutputError``."""
+        ``dir`` replaced only if ehl wrote it or it is empty). Raises ``ehl.OutputError``.
+        Not interruptible: Ctrl-C during a write takes effect when the write has ended, so
+        ``dir`` is complete (or, on an error, as it was)."""
 
 def cancel_all() -> int:
     """Cancels every solve running now in this process, in any thread, and returns how many.
