@@ -144,7 +144,9 @@ def test_the_gil_is_released_while_solving():
         stop.set()
         t.join()
     took = time.perf_counter() - start
-    assert took > 0.2, "the case must take a while for the test to mean something"
+    if took < 0.2:
+        # (a fast machine: the gaps of a 5 ms ticker could not tell a held GIL from a free one)
+        pytest.skip(f"the solve took {took:.3f} s, too short to see the other thread tick")
     # with the GIL held by the solve the other thread would not tick at all: it ticks
     # throughout (largest gap well under the solve time)
     gaps = [b - a for a, b in zip(ticks, ticks[1:])]
