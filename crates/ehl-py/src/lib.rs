@@ -390,28 +390,37 @@ impl PyCase {
     fn get(&self, py: Python<'_>, key: &str) -> PyResult<Py<PyAny>> {
         let root = self.tree(py)?;
         let display = ehl::case::check_key(key).map_err(|m| case_err(py, &self.file, key, m))?;
+        let not_set = || {
+            case_err(
+                py,
+                &self.file,
+                &display,
+                "is not set in this case (its default applies: see `ehl check` or the summary's \"case\")".into(),
+            )
+        };
         let mut here = toml::Value::Table(root);
+        // `check_key` gives the display form: dotted names, each followed by any number of
+        // indices (`features[0].depth`, `a[0][1]`)
         for part in display.split('.') {
-            let (name, idx) = match part.find('[') {
-                Some(i) => (&part[..i], part[i + 1..part.len() - 1].parse::<usize>().ok()),
-                None => (part, None),
+            let (name, mut rest) = match part.find('[') {
+                Some(i) => (&part[..i], &part[i..]),
+                None => (part, ""),
             };
-            let next = here.get(name).cloned();
-            let next = match (next, idx) {
-                (Some(toml::Value::Array(a)), Some(i)) => a.get(i).cloned(),
-                (n, None) => n,
-                _ => None,
-            };
-            match next {
-                Some(n) => here = n,
-                None => {
-                    return Err(case_err(
+            here = here.get(name).cloned().ok_or_else(not_set)?;
+            while let Some(close) = rest.find(']') {
+                let i: usize = rest[1..close].parse().map_err(|_| {
+                    case_err(
                         py,
                         &self.file,
                         &display,
-                        "is not set in this case (its default applies: see `ehl check` or the summary's \"case\")".into(),
-                    ))
-                }
+                        format!("`{part}` has an index that is not a whole number"),
+                    )
+                })?;
+                here = match &here {
+                    toml::Value::Array(a) => a.get(i).cloned().ok_or_else(not_set)?,
+                    _ => return Err(not_set()),
+                };
+                rest = &rest[close + 1..];
             }
         }
         from_toml(py, &here)

@@ -64,6 +64,20 @@ def test_set_accepts_tables_lists_and_numpy_values():
     assert t.transient and t.check()["transient"]["steps"] == 150
 
 
+def test_get_follows_every_index_or_says_why_not():
+    t = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
+    t.set("output.snapshots", [-0.5e-3, 0.0])
+    assert t.get("features[0]")["depth"] == t.get("features[0].depth")
+    assert t.get("features.0.depth") == t.get("features[0].depth")
+    assert t.get("output.snapshots") == [-0.5e-3, 0.0]
+    # more indices than the value has, or an index past the end: an error, never the array
+    for key in ["features[0][1]", "features[0][0].depth", "features[5].depth",
+                "output.snapshots[0]", "output.snapshots[0][1]"]:
+        with pytest.raises(ehl.CaseError) as e:
+            t.get(key)
+        assert e.value.key is not None, key
+
+
 def test_a_bad_key_raises_case_error_naming_the_key():
     c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
     with pytest.raises(ehl.CaseError) as e:
