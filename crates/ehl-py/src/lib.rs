@@ -945,7 +945,8 @@ fn _solve(
     let token = CancelToken::new();
     let _registered = Registered::new(&token);
     let reporter = Reporter::default();
-    let poll = Duration::from_secs_f64(poll.clamp(0.001, 1.0));
+    // (NaN, which `clamp` passes through and `Duration` panics on, as the default)
+    let poll = Duration::from_secs_f64(if poll.is_nan() { 0.05 } else { poll.clamp(0.001, 1.0) });
     let (tx, rx) = mpsc::channel();
     // (a Mutex: the GIL-free closures below must be Send, and a Receiver is not Sync)
     let rx = Mutex::new(rx);

@@ -3,6 +3,7 @@
 import copy
 import json
 import math
+import pathlib
 import threading
 import time
 
@@ -160,6 +161,11 @@ def test_set_and_solve_in_two_threads_raise_no_panic():
     assert not errors, repr(errors)
 
 
+def test_poll_nan_is_the_default():
+    sol = ehl._solve(small_ehl(), None, float("nan"))
+    assert sol.converged
+
+
 def test_copy_is_independent():
     a = small_ehl()
     b = a.copy()
@@ -248,7 +254,7 @@ def test_an_exception_in_the_callback_stops_the_solve():
 def test_write_gives_the_cli_outputs_and_refuses_foreign_folders(tmp_path):
     sol = ehl.solve(small_ehl(), progress=False)
     out = tmp_path / "out"
-    sol.write(out)
+    assert sol.write(out) == out and isinstance(sol.write(out), pathlib.Path)
     names = {p.name for p in out.iterdir()}
     assert {"summary.json", "fields.npz", "centerline.csv", "pressure.png", ".ehl-output"} <= names
     written = json.loads((out / "summary.json").read_text())

@@ -27,7 +27,7 @@ The case-file format: docs/case-file.md of the repository.
 
 import os
 import sys
-from typing import Callable, Optional, Union
+from typing import Callable, Union
 
 from . import errors
 from ._ehl import Case, Solution, __version__, _solve, cancel_all
@@ -50,12 +50,14 @@ ProgressArg = Union[bool, None, Callable[[float, str], None]]
 
 
 def _interactive() -> bool:
-    """True in a Jupyter notebook (an IPython kernel) or when stderr is a terminal."""
+    """True in a Jupyter notebook (an IPython kernel: Jupyter, VS Code, Colab, ...) or when
+    stderr is a terminal."""
     shell = sys.modules.get("IPython")
     if shell is not None:
         try:
             ip = shell.get_ipython()  # type: ignore[attr-defined]
-            if ip is not None and type(ip).__name__ == "ZMQInteractiveShell":
+            # every kernel runs under an IPKernelApp, whatever the shell class is called
+            if ip is not None and "IPKernelApp" in ip.config:
                 return True
         except Exception:
             pass
