@@ -30,13 +30,16 @@ fn error_class<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> 
     py.import("ehl.errors")?.getattr(name)
 }
 
+/// The arguments of an `ehl.errors` class: (message, file or path, key, reason).
+type ErrorArgs = (String, Option<String>, Option<String>, Option<String>);
+
 /// A library error as the Python exception: `CaseError` (with `.file`, `.key`, `.reason`),
 /// `OutputError` (`.path`, `.reason`), `SolverError`, or `KeyboardInterrupt` for a cancelled
 /// solve.
 fn py_err(py: Python<'_>, e: ehl::Error) -> PyErr {
     let text = e.to_string();
     let made = (|| -> PyResult<PyErr> {
-        let (class, args): (&str, (String, Option<String>, Option<String>, Option<String>)) =
+        let (class, args): (&str, ErrorArgs) =
             match e {
                 ehl::Error::Case { file, key, message }
                 | ehl::Error::Unsupported { file, key, message } => {
