@@ -39,24 +39,23 @@ type ErrorArgs = (String, Option<String>, Option<String>, Option<String>);
 fn py_err(py: Python<'_>, e: ehl::Error) -> PyErr {
     let text = e.to_string();
     let made = (|| -> PyResult<PyErr> {
-        let (class, args): (&str, ErrorArgs) =
-            match e {
-                ehl::Error::Case { file, key, message }
-                | ehl::Error::Unsupported { file, key, message } => {
-                    ("CaseError", (text, Some(file), Some(key), Some(message)))
-                }
-                ehl::Error::CaseFile { file, message } => {
-                    ("CaseError", (text, Some(file), None, Some(message)))
-                }
-                ehl::Error::Output { path, message } => (
-                    "OutputError",
-                    (text, Some(path.display().to_string()), None, Some(message)),
-                ),
-                ehl::Error::Solver(m) => ("SolverError", (text, None, None, Some(m))),
-                ehl::Error::Cancelled => {
-                    return Ok(PyKeyboardInterrupt::new_err("ehl: solve cancelled"))
-                }
-            };
+        let (class, args): (&str, ErrorArgs) = match e {
+            ehl::Error::Case { file, key, message }
+            | ehl::Error::Unsupported { file, key, message } => {
+                ("CaseError", (text, Some(file), Some(key), Some(message)))
+            }
+            ehl::Error::CaseFile { file, message } => {
+                ("CaseError", (text, Some(file), None, Some(message)))
+            }
+            ehl::Error::Output { path, message } => (
+                "OutputError",
+                (text, Some(path.display().to_string()), None, Some(message)),
+            ),
+            ehl::Error::Solver(m) => ("SolverError", (text, None, None, Some(m))),
+            ehl::Error::Cancelled => {
+                return Ok(PyKeyboardInterrupt::new_err("ehl: solve cancelled"))
+            }
+        };
         let value = error_class(py, class)?.call1(args)?;
         Ok(PyErr::from_value(value))
     })();
@@ -96,16 +95,22 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, Stri
     use toml::Value;
     let fail = |m: String| (key.to_string(), m);
     if v.is_instance_of::<PyBool>() {
-        return Ok(Value::Boolean(v.extract::<bool>().map_err(|e| fail(e.to_string()))?));
+        return Ok(Value::Boolean(
+            v.extract::<bool>().map_err(|e| fail(e.to_string()))?,
+        ));
     }
     if v.is_instance_of::<PyInt>() {
         return match v.extract::<i64>() {
             Ok(i) => Ok(Value::Integer(i)),
-            Err(_) => Ok(Value::Float(v.extract::<f64>().map_err(|e| fail(e.to_string()))?)),
+            Err(_) => Ok(Value::Float(
+                v.extract::<f64>().map_err(|e| fail(e.to_string()))?,
+            )),
         };
     }
     if v.is_instance_of::<PyFloat>() {
-        return Ok(Value::Float(v.extract::<f64>().map_err(|e| fail(e.to_string()))?));
+        return Ok(Value::Float(
+            v.extract::<f64>().map_err(|e| fail(e.to_string()))?,
+        ));
     }
     if let Ok(s) = v.cast::<PyString>() {
         return Ok(Value::String(s.to_string()));
@@ -325,7 +330,13 @@ impl PyCase {
         let v = to_toml(d.as_any(), "").map_err(|(key, message)| {
             if key.is_empty() {
                 // the dict as a whole (a key that is not a string): no key to name
-                py_err(py, ehl::Error::CaseFile { file: file.clone(), message })
+                py_err(
+                    py,
+                    ehl::Error::CaseFile {
+                        file: file.clone(),
+                        message,
+                    },
+                )
             } else {
                 case_err(py, &file, &key, message)
             }
@@ -949,7 +960,11 @@ fn _solve(
     let _registered = Registered::new(&token);
     let reporter = Reporter::default();
     // (NaN, which `clamp` passes through and `Duration` panics on, as the default)
-    let poll = Duration::from_secs_f64(if poll.is_nan() { 0.05 } else { poll.clamp(0.001, 1.0) });
+    let poll = Duration::from_secs_f64(if poll.is_nan() {
+        0.05
+    } else {
+        poll.clamp(0.001, 1.0)
+    });
     let (tx, rx) = mpsc::channel();
     // (a Mutex: the GIL-free closures below must be Send, and a Receiver is not Sync)
     let rx = Mutex::new(rx);
