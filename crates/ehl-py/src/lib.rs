@@ -9,12 +9,13 @@
 //! Threads: a solve runs on a thread of its own with the GIL released; the calling thread
 //! waits in steps of `poll` seconds, and between them (holding the GIL) checks for signals
 //! (Ctrl-C: the solve is cancelled and KeyboardInterrupt raised) and passes the latest progress
-//! report to the Python callback.
+//! report to the Python callback. Python delivers Ctrl-C to the main thread only: solves in
+//! other threads stop through `cancel_all` (every running solve's token is in a registry).
 
 use ehl::run::cancel::{self, CancelToken};
 use numpy::ndarray::ArrayView2;
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
@@ -29,30 +30,32 @@ fn error_class<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> 
     py.import("ehl.errors")?.getattr(name)
 }
 
+/// The arguments of an `ehl.errors` class: (message, file or path, key, reason).
+type ErrorArgs = (String, Option<String>, Option<String>, Option<String>);
+
 /// A library error as the Python exception: `CaseError` (with `.file`, `.key`, `.reason`),
 /// `OutputError` (`.path`, `.reason`), `SolverError`, or `KeyboardInterrupt` for a cancelled
 /// solve.
 fn py_err(py: Python<'_>, e: ehl::Error) -> PyErr {
     let text = e.to_string();
     let made = (|| -> PyResult<PyErr> {
-        let (class, args): (&str, (String, Option<String>, Option<String>, Option<String>)) =
-            match e {
-                ehl::Error::Case { file, key, message }
-                | ehl::Error::Unsupported { file, key, message } => {
-                    ("CaseError", (text, Some(file), Some(key), Some(message)))
-                }
-                ehl::Error::CaseFile { file, message } => {
-                    ("CaseError", (text, Some(file), None, Some(message)))
-                }
-                ehl::Error::Output { path, message } => (
-                    "OutputError",
-                    (text, Some(path.display().to_string()), None, Some(message)),
-                ),
-                ehl::Error::Solver(m) => ("SolverError", (text, None, None, Some(m))),
-                ehl::Error::Cancelled => {
-                    return Ok(PyKeyboardInterrupt::new_err("ehl: solve cancelled"))
-                }
-            };
+        let (class, args): (&str, ErrorArgs) = match e {
+            ehl::Error::Case { file, key, message }
+            | ehl::Error::Unsupported { file, key, message } => {
+                ("CaseError", (text, Some(file), Some(key), Some(message)))
+            }
+            ehl::Error::CaseFile { file, message } => {
+                ("CaseError", (text, Some(file), None, Some(message)))
+            }
+            ehl::Error::Output { path, message } => (
+                "OutputError",
+                (text, Some(path.display().to_string()), None, Some(message)),
+            ),
+            ehl::Error::Solver(m) => ("SolverError", (text, None, None, Some(m))),
+            ehl::Error::Cancelled => {
+                return Ok(PyKeyboardInterrupt::new_err("ehl: solve cancelled"))
+            }
+        };
         let value = error_class(py, class)?.call1(args)?;
         Ok(PyErr::from_value(value))
     })();
@@ -71,23 +74,43 @@ fn case_err(py: Python<'_>, file: &str, key: &str, reason: String) -> PyErr {
     )
 }
 
+/// A case that another thread is changing (a borrow error) as a `RuntimeError` that says so,
+/// not a panic. With the GIL held while a case is changed (see `Case.set`) it does not happen
+/// with Python's threads; the check stays for safety.
+fn busy<T>(r: Result<T, impl std::fmt::Display>) -> PyResult<T> {
+    r.map_err(|e| {
+        PyRuntimeError::new_err(format!(
+            "ehl.Case is being changed by another thread ({e}); use one case per thread \
+             (case.copy()) or a lock"
+        ))
+    })
+}
+
 // ------------------------------------------------------------------ Python <-> TOML
 
 /// A Python value as a TOML value: bool, int, float (numpy scalars too), str, os.PathLike,
-/// dict, list, tuple, numpy arrays. `key` names the place in messages.
-fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
+/// dict, list, tuple, numpy arrays. `key` names the place in messages; an error carries the
+/// dotted path of the value that has no case-file form (`features[1].depth`) and the reason.
+fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, String)> {
     use toml::Value;
+    let fail = |m: String| (key.to_string(), m);
     if v.is_instance_of::<PyBool>() {
-        return Ok(Value::Boolean(v.extract::<bool>().map_err(|e| e.to_string())?));
+        return Ok(Value::Boolean(
+            v.extract::<bool>().map_err(|e| fail(e.to_string()))?,
+        ));
     }
     if v.is_instance_of::<PyInt>() {
         return match v.extract::<i64>() {
             Ok(i) => Ok(Value::Integer(i)),
-            Err(_) => Ok(Value::Float(v.extract::<f64>().map_err(|e| e.to_string())?)),
+            Err(_) => Ok(Value::Float(
+                v.extract::<f64>().map_err(|e| fail(e.to_string()))?,
+            )),
         };
     }
     if v.is_instance_of::<PyFloat>() {
-        return Ok(Value::Float(v.extract::<f64>().map_err(|e| e.to_string())?));
+        return Ok(Value::Float(
+            v.extract::<f64>().map_err(|e| fail(e.to_string()))?,
+        ));
     }
     if let Ok(s) = v.cast::<PyString>() {
         return Ok(Value::String(s.to_string()));
@@ -96,7 +119,12 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
         let mut t = toml::Table::new();
         for (k, item) in d.iter() {
             let Ok(name) = k.extract::<String>() else {
-                return Err(format!("`{key}` has a key {k} that is not a string"));
+                let place = if key.is_empty() {
+                    "the case dict".to_string()
+                } else {
+                    format!("`{key}`")
+                };
+                return Err(fail(format!("{place} has a key {k} that is not a string")));
             };
             let sub = if key.is_empty() {
                 name.clone()
@@ -112,16 +140,16 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut items = Vec::new();
-        for (i, item) in v.try_iter().map_err(|e| e.to_string())?.enumerate() {
-            let item = item.map_err(|e| e.to_string())?;
+        for (i, item) in v.try_iter().map_err(|e| fail(e.to_string()))?.enumerate() {
+            let item = item.map_err(|e| fail(e.to_string()))?;
             items.push(to_toml(&item, &format!("{key}[{i}]"))?);
         }
         return Ok(Value::Array(items));
     }
     if v.is_none() {
-        return Err(format!(
+        return Err(fail(format!(
             "`{key}` is None; give a value, or leave the key out for its default"
-        ));
+        )));
     }
     let type_name = v
         .get_type()
@@ -154,9 +182,9 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, String> {
     if let Ok(f) = v.extract::<f64>() {
         return Ok(Value::Float(f));
     }
-    Err(format!(
+    Err(fail(format!(
         "`{key}` is a Python {type_name}, which has no case-file form (give a number, bool, str, dict or list)"
-    ))
+    )))
 }
 
 /// A TOML value as a Python object (tables as dicts, arrays as lists).
@@ -299,7 +327,20 @@ impl PyCase {
     #[staticmethod]
     #[pyo3(signature = (d, file = "<dict>".to_string()))]
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyDict>, file: String) -> PyResult<Self> {
-        let v = to_toml(d.as_any(), "").map_err(|m| case_err(py, &file, "", m))?;
+        let v = to_toml(d.as_any(), "").map_err(|(key, message)| {
+            if key.is_empty() {
+                // the dict as a whole (a key that is not a string): no key to name
+                py_err(
+                    py,
+                    ehl::Error::CaseFile {
+                        file: file.clone(),
+                        message,
+                    },
+                )
+            } else {
+                case_err(py, &file, &key, message)
+            }
+        })?;
         let toml::Value::Table(t) = v else {
             unreachable!("a dict converts to a table")
         };
@@ -310,8 +351,16 @@ impl PyCase {
     /// `case.set("load.force", 5000)`, `case.set("features[0].depth", 1e-7)`,
     /// `case.set("body1.profile", {"kind": "crowned", "crown_radius": 0.5})`. The case is
     /// validated again; on an error (`CaseError` naming the key) it is left unchanged.
-    fn set(&mut self, py: Python<'_>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let v = to_toml(value, key).map_err(|m| case_err(py, &self.file, key, m))?;
+    ///
+    /// Threads: the value is converted first (that may run Python code: `tolist`,
+    /// `__fspath__`, `__repr__`) with no borrow of the case held; the case is then borrowed
+    /// only while it is parsed again, with the GIL held (parsing takes milliseconds), so no
+    /// other Python thread can meet the case borrowed (e.g. `solve(case)` in another thread:
+    /// before, `set` released the GIL while parsing and such a `solve` panicked).
+    fn set(slf: &Bound<'_, Self>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let py = slf.py();
+        let file = busy(slf.try_borrow())?.file.clone();
+        let v = to_toml(value, key).map_err(|(k, m)| case_err(py, &file, &k, m))?;
         let text = match &v {
             toml::Value::Table(t) => {
                 // inline-table form of a table value
@@ -323,23 +372,31 @@ impl PyCase {
             }
             other => other.to_string(),
         };
-        let mut overrides = self.overrides.clone();
         let assignment = format!("{key}={text}");
-        overrides.push(assignment.clone());
         // the library's messages say where an override came from in the CLI's words
         let cli = format!(" (in --set {assignment})");
         let ours = format!(" (in Case.set({key:?}, {}))", value.repr()?);
-        let next = match py.detach(|| ehl::case::parse_str(&self.text, &self.file, &overrides)) {
-            Ok(case) => case,
-            Err(ehl::Error::Case { file, key, message }) => {
-                let message = message.replace(&cli, &ours);
-                return Err(py_err(py, ehl::Error::Case { file, key, message }));
+        // from here on no Python code runs and the GIL stays held
+        let mut this = busy(slf.try_borrow_mut())?;
+        let mut overrides = this.overrides.clone();
+        overrides.push(assignment);
+        match ehl::case::parse_str(&this.text, &this.file, &overrides) {
+            Ok(next) => {
+                this.overrides = overrides;
+                this.case = next;
+                Ok(())
             }
-            Err(e) => return Err(py_err(py, e)),
-        };
-        self.overrides = overrides;
-        self.case = next;
-        Ok(())
+            Err(e) => {
+                drop(this); // (making the exception runs Python code)
+                Err(match e {
+                    ehl::Error::Case { file, key, message } => {
+                        let message = message.replace(&cli, &ours);
+                        py_err(py, ehl::Error::Case { file, key, message })
+                    }
+                    e => py_err(py, e),
+                })
+            }
+        }
     }
 
     /// The value of a dotted key as set in the case file or by `set` (not the defaults: see
@@ -347,28 +404,37 @@ impl PyCase {
     fn get(&self, py: Python<'_>, key: &str) -> PyResult<Py<PyAny>> {
         let root = self.tree(py)?;
         let display = ehl::case::check_key(key).map_err(|m| case_err(py, &self.file, key, m))?;
+        let not_set = || {
+            case_err(
+                py,
+                &self.file,
+                &display,
+                "is not set in this case (its default applies: see `ehl check` or the summary's \"case\")".into(),
+            )
+        };
         let mut here = toml::Value::Table(root);
+        // `check_key` gives the display form: dotted names, each followed by any number of
+        // indices (`features[0].depth`, `a[0][1]`)
         for part in display.split('.') {
-            let (name, idx) = match part.find('[') {
-                Some(i) => (&part[..i], part[i + 1..part.len() - 1].parse::<usize>().ok()),
-                None => (part, None),
+            let (name, mut rest) = match part.find('[') {
+                Some(i) => (&part[..i], &part[i..]),
+                None => (part, ""),
             };
-            let next = here.get(name).cloned();
-            let next = match (next, idx) {
-                (Some(toml::Value::Array(a)), Some(i)) => a.get(i).cloned(),
-                (n, None) => n,
-                _ => None,
-            };
-            match next {
-                Some(n) => here = n,
-                None => {
-                    return Err(case_err(
+            here = here.get(name).cloned().ok_or_else(not_set)?;
+            while let Some(close) = rest.find(']') {
+                let i: usize = rest[1..close].parse().map_err(|_| {
+                    case_err(
                         py,
                         &self.file,
                         &display,
-                        "is not set in this case (its default applies: see `ehl check` or the summary's \"case\")".into(),
-                    ))
-                }
+                        format!("`{part}` has an index that is not a whole number"),
+                    )
+                })?;
+                here = match &here {
+                    toml::Value::Array(a) => a.get(i).cloned().ok_or_else(not_set)?,
+                    _ => return Err(not_set()),
+                };
+                rest = &rest[close + 1..];
             }
         }
         from_toml(py, &here)
@@ -561,7 +627,7 @@ fn toml_key(k: &str) -> String {
 // ------------------------------------------------------------------ Solution
 
 /// A solved case: the library's solution and the case it came from. Immutable.
-#[pyclass(module = "ehl", name = "Solution", frozen)]
+#[pyclass(module = "ehl", name = "Solution", frozen, weakref)]
 struct PySolution {
     case: PyCase,
     sol: ehl::solution::Solution,
@@ -760,7 +826,10 @@ impl PySolution {
     /// Writes the outputs of `ehl run` into `dir` (summary.json, fields.npz, fields.vtk, the
     /// csv profiles, the pictures; transient runs add the timeline, frames, animation and
     /// snapshots). Atomic: the files go into a temporary folder that replaces `dir` only when
-    /// all are written; `dir` is replaced only if ehl wrote it (or it is empty). Returns `dir`.
+    /// all are written; `dir` is replaced only if ehl wrote it (or it is empty). Returns `dir`
+    /// (a `pathlib.Path`). Not interruptible: the GIL is released and no signal is checked
+    /// until the write has ended, so Ctrl-C raises KeyboardInterrupt only after it, with `dir`
+    /// complete (or, on an error, as it was).
     fn write(&self, py: Python<'_>, dir: PathBuf) -> PyResult<PathBuf> {
         py.detach(|| ehl::output::write_all(&dir, &self.case.case, &self.sol))
             .map_err(|e| py_err(py, e))?;
@@ -833,6 +902,47 @@ impl Reporter {
     }
 }
 
+/// The tokens of the solves running now in this process (any thread), by a number of their
+/// own: `cancel_all` cancels them. A solve registers its token when it starts and removes it
+/// when it ends (`Registered`'s drop, also on an error or a panic).
+static LIVE: Mutex<Vec<(u64, CancelToken)>> = Mutex::new(Vec::new());
+static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A token in `LIVE` for as long as this value lives.
+struct Registered(u64);
+
+impl Registered {
+    fn new(token: &CancelToken) -> Self {
+        let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        live().push((id, token.clone()));
+        Registered(id)
+    }
+}
+
+impl Drop for Registered {
+    fn drop(&mut self) {
+        live().retain(|(id, _)| *id != self.0);
+    }
+}
+
+/// `LIVE`, locked (a panic while it was held cannot leave it inconsistent: push and retain).
+fn live() -> std::sync::MutexGuard<'static, Vec<(u64, CancelToken)>> {
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Cancels every solve running now in this process, in any thread; returns how many. Each
+/// stops within a solver iteration and raises KeyboardInterrupt in its own thread. Solves
+/// started later are not affected. For Ctrl-C with solves in worker threads (Python delivers
+/// the signal to the main thread only): `except KeyboardInterrupt: ehl.cancel_all(); raise`.
+#[pyfunction]
+fn cancel_all() -> usize {
+    let live = live();
+    for (_, t) in live.iter() {
+        t.cancel();
+    }
+    live.len()
+}
+
 /// Solves `case` with the GIL released (see the module documentation). `callback(fraction,
 /// message)` receives progress reports, at most one per `poll` seconds. Ctrl-C (a signal seen
 /// by the main thread) or an exception raised by the callback cancels the solve: the error is
@@ -845,10 +955,16 @@ fn _solve(
     callback: Option<Bound<'_, PyAny>>,
     poll: f64,
 ) -> PyResult<PySolution> {
-    let case = case.borrow().clone();
+    let case = busy(case.try_borrow())?.clone();
     let token = CancelToken::new();
+    let _registered = Registered::new(&token);
     let reporter = Reporter::default();
-    let poll = Duration::from_secs_f64(poll.clamp(0.001, 1.0));
+    // (NaN, which `clamp` passes through and `Duration` panics on, as the default)
+    let poll = Duration::from_secs_f64(if poll.is_nan() {
+        0.05
+    } else {
+        poll.clamp(0.001, 1.0)
+    });
     let (tx, rx) = mpsc::channel();
     // (a Mutex: the GIL-free closures below must be Send, and a Receiver is not Sync)
     let rx = Mutex::new(rx);
@@ -922,6 +1038,7 @@ fn _ehl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCase>()?;
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(cancel_all, m)?)?;
     m.add("__version__", ehl::VERSION)?;
     Ok(())
 }

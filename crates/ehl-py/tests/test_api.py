@@ -3,6 +3,9 @@
 import copy
 import json
 import math
+import pathlib
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -62,6 +65,20 @@ def test_set_accepts_tables_lists_and_numpy_values():
     assert t.transient and t.check()["transient"]["steps"] == 150
 
 
+def test_get_follows_every_index_or_says_why_not():
+    t = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml"))
+    t.set("output.snapshots", [-0.5e-3, 0.0])
+    assert t.get("features[0]")["depth"] == t.get("features[0].depth")
+    assert t.get("features.0.depth") == t.get("features[0].depth")
+    assert t.get("output.snapshots") == [-0.5e-3, 0.0]
+    # more indices than the value has, or an index past the end: an error, never the array
+    for key in ["features[0][1]", "features[0][0].depth", "features[5].depth",
+                "output.snapshots[0]", "output.snapshots[0][1]"]:
+        with pytest.raises(ehl.CaseError) as e:
+            t.get(key)
+        assert e.value.key is not None, key
+
+
 def test_a_bad_key_raises_case_error_naming_the_key():
     c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
     with pytest.raises(ehl.CaseError) as e:
@@ -87,6 +104,20 @@ def test_a_bad_key_raises_case_error_naming_the_key():
     with pytest.raises(ehl.CaseError) as e:
         ehl.Case.from_dict(d)
     assert e.value.key == "lubricant.viscosty" and e.value.file == "<dict>"
+    # a value with no case-file form names its key, also inside a list of tables
+    d = c.to_dict()
+    d["load"]["force"] = object()
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict(d)
+    assert e.value.key == "load.force" and "load.force" in str(e.value)
+    d = ehl.Case.from_file(example("ehl_thesis_ch3_single_pit.toml")).to_dict()
+    d["features"][0]["depth"] = {1: 2}
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict(d)
+    assert e.value.key == "features[0].depth"
+    with pytest.raises(ehl.CaseError) as e:
+        ehl.Case.from_dict({1: 2})
+    assert e.value.key is None and "not a string" in e.value.reason
     with pytest.raises(ehl.CaseError) as e:
         ehl.Case.from_toml("kind = ")
     assert e.value.key is None and "TOML" in e.value.reason
@@ -94,6 +125,45 @@ def test_a_bad_key_raises_case_error_naming_the_key():
         ehl.Case.from_file("no/such/case.toml")
     # CaseError is a ValueError, and every error an EhlError
     assert issubclass(ehl.CaseError, ValueError) and issubclass(ehl.CaseError, ehl.EhlError)
+
+
+def test_set_and_solve_in_two_threads_raise_no_panic():
+    """One thread changes a case while others solve and read it: no PanicException (Case.set
+    used to release the GIL while parsing, and a solve meeting the case borrowed panicked)."""
+    case = ehl.Case.from_file(example("dry_ball_on_flat.toml"))
+    case.set("grid.nx", 16)
+    case.set("grid.ny", 16)
+    errors = []
+    stop = threading.Event()
+
+    def guarded(f):
+        def run():
+            try:
+                while not stop.is_set():
+                    f()
+            except BaseException as e:  # PanicException is a BaseException
+                errors.append(e)
+                stop.set()
+        return run
+
+    loads = iter(range(10**9))
+    threads = [
+        threading.Thread(target=guarded(lambda: case.set("load.force", 100.0 + next(loads) % 7))),
+        threading.Thread(target=guarded(lambda: ehl.solve(case, progress=False))),
+        threading.Thread(target=guarded(lambda: (case.check(), case.get("load.force")))),
+    ]
+    for t in threads:
+        t.start()
+    time.sleep(1.5)
+    stop.set()
+    for t in threads:
+        t.join()
+    assert not errors, repr(errors)
+
+
+def test_poll_nan_is_the_default():
+    sol = ehl._solve(small_ehl(), None, float("nan"))
+    assert sol.converged
 
 
 def test_copy_is_independent():
@@ -184,7 +254,7 @@ def test_an_exception_in_the_callback_stops_the_solve():
 def test_write_gives_the_cli_outputs_and_refuses_foreign_folders(tmp_path):
     sol = ehl.solve(small_ehl(), progress=False)
     out = tmp_path / "out"
-    sol.write(out)
+    assert sol.write(out) == out and isinstance(sol.write(out), pathlib.Path)
     names = {p.name for p in out.iterdir()}
     assert {"summary.json", "fields.npz", "centerline.csv", "pressure.png", ".ehl-output"} <= names
     written = json.loads((out / "summary.json").read_text())

@@ -12,21 +12,32 @@ The Python face of the ``ehl`` solver (a Rust library), with the case-file model
 >>> sol.summary["min_film_m"], sol.pressure.shape   # summary.json, (ny, nx) arrays
 >>> sol.write("out/roller")                 # the outputs of `ehl run`
 
+Ctrl-C reaches the main thread only. Solves running in worker threads (a
+``ThreadPoolExecutor``) are stopped with :func:`cancel_all`::
+
+    with ThreadPoolExecutor() as ex:
+        try:
+            solutions = list(ex.map(ehl.solve, cases))
+        except KeyboardInterrupt:
+            ehl.cancel_all()  # every running solve stops within a solver iteration
+            raise
+
 The case-file format: docs/case-file.md of the repository.
 """
 
 import os
 import sys
-from typing import Callable, Optional, Union
+from typing import Callable, Union
 
 from . import errors
-from ._ehl import Case, Solution, __version__, _solve
+from ._ehl import Case, Solution, __version__, _solve, cancel_all
 from .errors import CaseError, EhlError, OutputError, SolverError
 
 __all__ = [
     "Case",
     "Solution",
     "solve",
+    "cancel_all",
     "EhlError",
     "CaseError",
     "SolverError",
@@ -39,12 +50,14 @@ ProgressArg = Union[bool, None, Callable[[float, str], None]]
 
 
 def _interactive() -> bool:
-    """True in a Jupyter notebook (an IPython kernel) or when stderr is a terminal."""
+    """True in a Jupyter notebook (an IPython kernel: Jupyter, VS Code, Colab, ...) or when
+    stderr is a terminal."""
     shell = sys.modules.get("IPython")
     if shell is not None:
         try:
             ip = shell.get_ipython()  # type: ignore[attr-defined]
-            if ip is not None and type(ip).__name__ == "ZMQInteractiveShell":
+            # every kernel runs under an IPKernelApp, whatever the shell class is called
+            if ip is not None and "IPKernelApp" in ip.config:
                 return True
         except Exception:
             pass
@@ -105,7 +118,8 @@ def solve(
     The GIL is released while solving, so threads (``concurrent.futures.ThreadPoolExecutor``)
     solve several cases at once. Ctrl-C (KeyboardInterrupt, also the notebook's interrupt
     button) stops the solve within a solver iteration and raises KeyboardInterrupt; nothing is
-    written. A solve that does not converge returns normally with ``converged == False`` (as
+    written. Python delivers Ctrl-C to the main thread only: a solve in another thread is
+    stopped by :func:`cancel_all` (and raises KeyboardInterrupt in its thread). A solve that does not converge returns normally with ``converged == False`` (as
     the CLI writes its outputs with exit status 3).
 
     progress: True (default) shows a tqdm progress bar when tqdm is installed and the output

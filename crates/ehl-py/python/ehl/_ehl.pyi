@@ -2,6 +2,7 @@
 kg/m^3, rad)."""
 
 import os
+import pathlib
 from typing import Any, Callable, Dict, List, Optional, Union
 
 import numpy as np
@@ -112,9 +113,18 @@ class Solution:
     def snapshots(self) -> Optional[List[Dict[str, Any]]]:
         """Transient runs: the fields at ``output.snapshots`` (``x_p_m``, ``step``,
         ``pressure``, ``film``, ``deformation``, ``viscosity``, ``density``); else None."""
-    def write(self, dir: Union[str, "os.PathLike[str]"]) -> "os.PathLike[str]":
+    def write(self, dir: Union[str, "os.PathLike[str]"]) -> pathlib.Path:
         """Writes the outputs of ``ehl run`` into ``dir``, atomically (nothing half-written;
-        ``dir`` replaced only if ehl wrote it or it is empty). Raises ``ehl.OutputError``."""
+        ``dir`` replaced only if ehl wrote it or it is empty) and returns it as a
+        ``pathlib.Path``. Raises ``ehl.OutputError``. Not interruptible: Ctrl-C during a
+        write takes effect when the write has ended, so ``dir`` is complete (or, on an error,
+        as it was)."""
+
+def cancel_all() -> int:
+    """Cancels every solve running now in this process, in any thread, and returns how many.
+    Each stops within a solver iteration and raises KeyboardInterrupt in its own thread;
+    solves started later are not affected. Ctrl-C reaches the main thread only, so with
+    solves in worker threads: ``except KeyboardInterrupt: ehl.cancel_all(); raise``."""
 
 def _solve(
     case: Case,
