@@ -805,7 +805,9 @@ fn solve_ehl(
             summary.friction_force_n = Some(run.friction_force);
             summary.friction_coefficient = Some(mu);
         }
-        thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
+        if run.contact.solved() {
+            thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
+        }
     } else if r.converged {
         add_friction(
             &mut summary,
@@ -823,7 +825,7 @@ fn solve_ehl(
     }
     Ok(Solution {
         stress: None,
-        temperature: thermal_run.map(|t| t.fields),
+        temperature: thermal_run.filter(|t| t.contact.solved()).map(|t| t.fields),
         grid,
         fields: Fields {
             pressure: r.pressure,

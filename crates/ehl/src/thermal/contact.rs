@@ -199,6 +199,11 @@ impl ThermalContact {
         &self.grid
     }
 
+    /// Whether an update has solved the film on some cell (else there are no temperatures).
+    pub fn solved(&self) -> bool {
+        self.active.iter().any(|&a| a)
+    }
+
     /// collocation points across the film
     pub fn nz(&self) -> usize {
         self.rule.len()
@@ -213,10 +218,10 @@ impl ThermalContact {
     /// film temperature since the last update (K).
     ///
     /// `factors` are the generalized Reynolds factors (flow, couette) the pressure was solved
-    /// with (None: 1, the isothermal Newtonian film); with them each column carries the mass
-    /// flux of that Reynolds equation, q_x = -flow (rho/eta)(p, T0) h^3/12 dp/dx + couette
-    /// rho(p, T0) u_e h, and its pressure gradient follows its temperature
-    /// (`film_energy::Line::flux_x`).
+    /// with (None: 1, the isothermal Newtonian film); with them each column carries the
+    /// pressure-flow flux of that Reynolds equation, q_P = -flow (rho/eta)(p, T0) h^3/12 dp/dx,
+    /// and its pressure gradient follows its temperature
+    /// (`film_energy::Line::poiseuille_flux_x`).
     pub fn update(
         &mut self,
         p: &[f64],
@@ -262,13 +267,12 @@ impl ThermalContact {
         let wet: Vec<bool> = (0..n)
             .map(|k| active[k] && h[k].is_finite() && k % nx < len[k / nx])
             .collect();
-        let ue = 0.5 * (self.u1 + self.u2);
         let flux: Vec<f64> = (0..n)
             .map(|k| {
-                let (fl, co) = factors.map_or((1.0, 1.0), |(f, c)| (f[k], c[k]));
+                let fl = factors.map_or(1.0, |(f, _)| f[k]);
                 let rho = self.laws.density(pp[k], t0);
                 let eta = self.laws.viscosity(pp[k], t0);
-                -fl * rho / eta * hh[k].powi(3) / 12.0 * dpdx[k] + co * rho * ue * hh[k]
+                -fl * rho / eta * hh[k].powi(3) / 12.0 * dpdx[k]
             })
             .collect();
         let mut rise = vec![0.0; n];
@@ -296,7 +300,7 @@ impl ThermalContact {
                         t2: &self.surface[1][r.clone()],
                         t_in: t0,
                         extra_source: None,
-                        flux_x: Some(&flux[r]),
+                        poiseuille_flux_x: Some(&flux[r]),
                     }
                 })
                 .collect();

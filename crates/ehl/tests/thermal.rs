@@ -1,0 +1,160 @@
+//! Thermal EHL against independent references (issue 13): the isothermal limit, the energy
+//! balance, the classical inlet-heating reduction of the film and the shape of the traction
+//! curve. The solid's moving heat source has its exact limits in `thermal::solid`'s unit tests,
+//! the film's exact Couette solution in `thermal::film_energy`'s.
+//!
+//! Each case is the thesis Table 3.7 line contact (`examples/ehl_friction_line.toml`) on a
+//! coarse grid (256 cells) so that the suite stays fast; the grid dependence is in
+//! docs/thermal.md.
+
+use ehl::case::{parse_str, Case};
+use ehl::solution::Solution;
+
+const LINE: &str = include_str!("../../../examples/ehl_friction_line.toml");
+
+fn case(extra: &str, sets: &[&str]) -> Case {
+    let text = format!("{LINE}\n{extra}");
+    let mut all: Vec<String> = vec!["grid.nx=256".into()];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    parse_str(&text, "thermal.toml", &all).unwrap()
+}
+
+fn solve(c: &Case) -> Solution {
+    match ehl::run::solve(c, &ehl::run::Silent) {
+        Ok(s) => s,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// A Newtonian, isothermal-looking film: rheology Newtonian (the thermal run uses the full
+/// velocity profile, the isothermal one the Newtonian Reynolds equation: the same law).
+const NEWTONIAN: &str = "lubricant.rheology={ model = \"newtonian\" }";
+
+/// With an oil and bodies that conduct heat away almost perfectly (k = 1e6 W/(m K) in the oil,
+/// 1e7 times an oil's, and 1e10 in the bodies) the temperatures stay at the inlet's (measured
+/// rise 3e-4 K) and the thermal solver must give the isothermal film
+/// and pressure: the generalized Reynolds factors are then 1 up to the collocation's
+/// round-off, so the difference is the Newton tolerance (1e-6 relative residual), not a model
+/// difference. Tolerance 1e-4 relative on the films: a residual of 1e-6 moves H0 by ~1e-5.
+#[test]
+fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
+    let iso = solve(&case("", &[NEWTONIAN, "motion.slide_to_roll=0.3"]));
+    let th = solve(&case(
+        "[thermal]\nconductivity = 1e6\n",
+        &[NEWTONIAN, "motion.slide_to_roll=0.3", "body1.conductivity=1e10", "body2.conductivity=1e10"],
+    ));
+    assert!(iso.summary.converged && th.summary.converged, "{}", th.summary.termination);
+    let rise = th.summary.max_film_temperature_k.unwrap() - 313.0;
+    assert!(rise < 1e-3, "rise {rise} K");
+    for (a, b, what) in [
+        (iso.summary.central_film_m.unwrap(), th.summary.central_film_m.unwrap(), "central film"),
+        (iso.summary.min_film_m.unwrap(), th.summary.min_film_m.unwrap(), "minimum film"),
+        (iso.summary.max_pressure_pa, th.summary.max_pressure_pa, "max pressure"),
+    ] {
+        assert!((b / a - 1.0).abs() < 1e-4, "{what}: thermal {b} vs isothermal {a}");
+    }
+    // the friction: the same Newtonian film, integrated from the profile (thermal) or the
+    // closed-form Couette + Poiseuille stress (isothermal): 1e-3 (different quadratures of the
+    // same stress; the profile's is exact for a Newtonian film)
+    let (fi, ft) = (iso.summary.friction_coefficient.unwrap(), th.summary.friction_coefficient.unwrap());
+    assert!((ft / fi - 1.0).abs() < 1e-3, "friction thermal {ft} vs isothermal {fi}");
+}
+
+/// Pure rolling, a Newtonian oil at low speed (U = 7.3e-12, a tenth of the table's: thermal
+/// loading L = 0.002): the thermal film is within 1 % of the isothermal one (Murch & Wilson:
+/// 1 - 0.254 L^0.62 = 0.5 % reduction), and thinner, never thicker.
+#[test]
+fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
+    let sets = [NEWTONIAN, "motion.slide_to_roll=0.0", "motion.dimensionless_speed=7.3e-12"];
+    let iso = solve(&case("", &sets));
+    let th = solve(&case("[thermal]\n", &sets));
+    assert!(th.summary.converged, "{}", th.summary.termination);
+    let (a, b) = (iso.summary.central_film_m.unwrap(), th.summary.central_film_m.unwrap());
+    let r = b / a;
+    assert!(r <= 1.0 + 1e-6 && r > 0.99, "thermal / isothermal central film {r}");
+}
+
+/// Energy: heat generated (shear + compression) = heat into the two bodies + heat convected out,
+/// within 1 % at a converged solution (issue 13), here at SRR 0.3 with the thesis' Carreau oil
+/// where 97 % of the heat goes into the bodies. The film's discrete balance telescopes with its
+/// consistent wall fluxes (`thermal::film_energy`), so what remains is the fixed point's
+/// tolerance: measured 2e-4.
+#[test]
+fn the_heat_generated_leaves_through_the_bodies_and_the_oil() {
+    let s = solve(&case("[thermal]\n", &["motion.slide_to_roll=0.3"]));
+    let m = &s.summary;
+    assert!(m.converged, "{}", m.termination);
+    let err = m.energy_balance_error.unwrap();
+    assert!(err.abs() < 1e-2, "energy balance {err}");
+    let g = m.heat_generated_w.unwrap();
+    let [b1, b2] = m.heat_to_body_w.unwrap();
+    assert!(g > 0.0 && b1 > 0.0 && b2 > 0.0 && m.heat_convected_w.unwrap() > 0.0);
+    // the film is hotter than both surfaces, which are hotter than the inlet
+    let [s1, s2] = m.max_surface_temperature_k.unwrap();
+    let tf = m.max_film_temperature_k.unwrap();
+    assert!(tf > s1.max(s2) && s1.min(s2) > 313.0, "{tf} {s1} {s2}");
+}
+
+/// The thermal reduction of the central film in pure rolling against the classical
+/// inlet-heating factors (Barus-exponential oil, beta = 0.03 1/K, Newtonian; the speed sets the
+/// thermal loading L = eta0 beta u_e^2 / k_f). Printed for docs/thermal.md:
+/// `cargo test --release -p ehl --test thermal -- --ignored --nocapture`.
+#[test]
+#[ignore = "long validation: cargo test --release -p ehl --test thermal -- --ignored"]
+fn film_reduction_sweep() {
+    for u in [3.6e-11, 7.3e-11, 1.1e-10] {
+        for nx in [256, 512] {
+            let (r, l, mw, gu) = reduction(u, nx);
+            println!(
+                "U {u:e} nx {nx}: L {l:.3}: thermal/isothermal {r:.4}, Murch-Wilson {mw:.4}, Gupta {gu:.4}"
+            );
+        }
+    }
+}
+
+/// (h_thermal / h_isothermal, L, Murch-Wilson, Gupta) at the dimensionless speed `u`.
+fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
+    let sets = [
+        NEWTONIAN.to_string(),
+        "motion.slide_to_roll=0.0".to_string(),
+        format!("motion.dimensionless_speed={u:e}"),
+        "lubricant.viscosity_model=\"barus\"".to_string(),
+        format!("grid.nx={nx}"),
+    ];
+    let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
+    let iso = solve(&case("", &sets));
+    let c = case("[thermal]\nviscosity_beta = 0.03\n", &sets);
+    let th = solve(&c);
+    assert!(iso.summary.converged && th.summary.converged, "{}", th.summary.termination);
+    let ue = c.motion.as_ref().unwrap().entrainment_speed;
+    let l = ehl::reference::thermal::thermal_loading(0.04, 0.03, ue, 0.14);
+    let ph_e = iso.summary.hertz_pressure_pa / c.reduced_modulus();
+    (
+        th.summary.central_film_m.unwrap() / iso.summary.central_film_m.unwrap(),
+        l,
+        ehl::reference::thermal::murch_wilson(l),
+        ehl::reference::thermal::gupta(l, 0.0, ph_e),
+    )
+}
+
+/// In pure rolling the thermal film is thinner than the isothermal one, more so as L grows,
+/// as Murch & Wilson's and Gupta et al.'s factors say. **Known disagreement, not understood**
+/// (docs/thermal.md): our reduction 1 - h_t/h_i is 0.57-0.65 of the two fits' mean at
+/// L = 0.13 and 0.55 (0.039 against 0.074, 0.107 against 0.159), unchanged by the inlet extent
+/// (-4 b to -8 b), the points across the film (7 to 11) and the grid (256 to 512 cells). The
+/// bounds below record that state: 0.45..1.1 of the fits' mean; closing the gap keeps the
+/// test passing, losing half of the present reduction fails it.
+#[test]
+fn film_reduction_against_the_inlet_heating_fits() {
+    let (r1, l1, mw1, gu1) = reduction(3.6e-11, 256);
+    let (r2, l2, mw2, gu2) = reduction(7.3e-11, 256);
+    assert!(l1 < l2 && r2 < r1 && r1 < 1.0, "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}");
+    for (r, l, mw, gu) in [(r1, l1, mw1, gu1), (r2, l2, mw2, gu2)] {
+        let ratio = (1.0 - r) / (1.0 - 0.5 * (mw + gu));
+        assert!(
+            (0.45..1.1).contains(&ratio),
+            "L {l:.3}: reduction {:.4} is {ratio:.2} of the fits' mean (MW {mw:.4}, Gupta {gu:.4})",
+            1.0 - r
+        );
+    }
+}
