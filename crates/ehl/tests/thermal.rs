@@ -11,6 +11,7 @@ use ehl::case::{parse_str, Case};
 use ehl::solution::Solution;
 
 const LINE: &str = include_str!("../../../examples/ehl_friction_line.toml");
+const THERMAL: &str = include_str!("../../../examples/ehl_thermal_line.toml");
 
 fn case(extra: &str, sets: &[&str]) -> Case {
     let text = format!("{LINE}\n{extra}");
@@ -75,13 +76,15 @@ fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
 }
 
 /// Energy: heat generated (shear + compression) = heat into the two bodies + heat convected out,
-/// within 1 % at a converged solution (issue 13), here at SRR 0.3 with the thesis' Carreau oil
-/// where 97 % of the heat goes into the bodies. The film's discrete balance telescopes with its
+/// within 1 % at a converged solution (issue 13), here the example `ehl_thermal_line.toml`
+/// (SRR 0.3, the thesis' Carreau oil with its index varying with temperature), where 97 % of
+/// the heat goes into the bodies. The film's discrete balance telescopes with its
 /// consistent wall fluxes (`thermal::film_energy`), so what remains is the fixed point's
 /// tolerance: measured 2e-4.
 #[test]
 fn the_heat_generated_leaves_through_the_bodies_and_the_oil() {
-    let s = solve(&case("[thermal]\n", &["motion.slide_to_roll=0.3"]));
+    let c = parse_str(THERMAL, "ehl_thermal_line.toml", &["grid.nx=256".to_string()]).unwrap();
+    let s = solve(&c);
     let m = &s.summary;
     assert!(m.converged, "{}", m.termination);
     let err = m.energy_balance_error.unwrap();

@@ -649,6 +649,18 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
             })
             .collect(),
     };
+    // the relaxed iterates are kept above a floor, the coldest boundary temperature less
+    // FLOOR_MARGIN: an intermediate iterate that undershoots there (the collocation across a thick, fast inlet
+    // film oscillates before it settles) would otherwise reach the viscosity law's pole
+    // (Roelands: 138 K) and end the run; a physical solution does not go there (the expansion
+    // cooling of an oil is ~10 K). A converged solution that touches the floor shows as an
+    // energy imbalance.
+    let floor = line
+        .t1
+        .iter()
+        .chain(line.t2)
+        .fold(line.t_in, |m, &v| m.min(v))
+        - FLOOR_MARGIN;
     let mut iterations = 0;
     loop {
         iterations += 1;
@@ -661,6 +673,8 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
         let converged = change <= opts.tol;
         if converged || iterations >= opts.max_iter {
             let energy = line_energy(rule, oil, line, &coef, &solved);
+            // the floor on what a caller restarts from, too
+            let solved: Vec<f64> = solved.iter().map(|v| v.max(floor)).collect();
             return Ok(LineSolution {
                 t: solved,
                 profiles,
@@ -673,10 +687,13 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
             });
         }
         for (a, b) in t.iter_mut().zip(&solved) {
-            *a += opts.relaxation * (b - *a);
+            *a = (*a + opts.relaxation * (b - *a)).max(floor);
         }
     }
 }
+
+/// How far below the coldest boundary temperature an iterate of [`solve_line`] may go (K).
+pub const FLOOR_MARGIN: f64 = 30.0;
 
 /// [`solve_line`] on several independent lines in parallel (rayon); `t_start` as there, one
 /// per line.
