@@ -42,23 +42,53 @@ fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
     let iso = solve(&case("", &[NEWTONIAN, "motion.slide_to_roll=0.3"]));
     let th = solve(&case(
         "[thermal]\nconductivity = 1e6\n",
-        &[NEWTONIAN, "motion.slide_to_roll=0.3", "body1.conductivity=1e10", "body2.conductivity=1e10"],
+        &[
+            NEWTONIAN,
+            "motion.slide_to_roll=0.3",
+            "body1.conductivity=1e10",
+            "body2.conductivity=1e10",
+        ],
     ));
-    assert!(iso.summary.converged && th.summary.converged, "{}", th.summary.termination);
+    assert!(
+        iso.summary.converged && th.summary.converged,
+        "{}",
+        th.summary.termination
+    );
     let rise = th.summary.max_film_temperature_k.unwrap() - 313.0;
     assert!(rise < 1e-3, "rise {rise} K");
     for (a, b, what) in [
-        (iso.summary.central_film_m.unwrap(), th.summary.central_film_m.unwrap(), "central film"),
-        (iso.summary.min_film_m.unwrap(), th.summary.min_film_m.unwrap(), "minimum film"),
-        (iso.summary.max_pressure_pa, th.summary.max_pressure_pa, "max pressure"),
+        (
+            iso.summary.central_film_m.unwrap(),
+            th.summary.central_film_m.unwrap(),
+            "central film",
+        ),
+        (
+            iso.summary.min_film_m.unwrap(),
+            th.summary.min_film_m.unwrap(),
+            "minimum film",
+        ),
+        (
+            iso.summary.max_pressure_pa,
+            th.summary.max_pressure_pa,
+            "max pressure",
+        ),
     ] {
-        assert!((b / a - 1.0).abs() < 1e-4, "{what}: thermal {b} vs isothermal {a}");
+        assert!(
+            (b / a - 1.0).abs() < 1e-4,
+            "{what}: thermal {b} vs isothermal {a}"
+        );
     }
     // the friction: the same Newtonian film, integrated from the profile (thermal) or the
     // closed-form Couette + Poiseuille stress (isothermal): 1e-3 (different quadratures of the
     // same stress; the profile's is exact for a Newtonian film)
-    let (fi, ft) = (iso.summary.friction_coefficient.unwrap(), th.summary.friction_coefficient.unwrap());
-    assert!((ft / fi - 1.0).abs() < 1e-3, "friction thermal {ft} vs isothermal {fi}");
+    let (fi, ft) = (
+        iso.summary.friction_coefficient.unwrap(),
+        th.summary.friction_coefficient.unwrap(),
+    );
+    assert!(
+        (ft / fi - 1.0).abs() < 1e-3,
+        "friction thermal {ft} vs isothermal {fi}"
+    );
 }
 
 /// Pure rolling, a Newtonian oil at low speed (U = 7.3e-12, a tenth of the table's: thermal
@@ -66,13 +96,23 @@ fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
 /// 1 - 0.254 L^0.62 = 0.5 % reduction), and thinner, never thicker.
 #[test]
 fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
-    let sets = [NEWTONIAN, "motion.slide_to_roll=0.0", "motion.dimensionless_speed=7.3e-12"];
+    let sets = [
+        NEWTONIAN,
+        "motion.slide_to_roll=0.0",
+        "motion.dimensionless_speed=7.3e-12",
+    ];
     let iso = solve(&case("", &sets));
     let th = solve(&case("[thermal]\n", &sets));
     assert!(th.summary.converged, "{}", th.summary.termination);
-    let (a, b) = (iso.summary.central_film_m.unwrap(), th.summary.central_film_m.unwrap());
+    let (a, b) = (
+        iso.summary.central_film_m.unwrap(),
+        th.summary.central_film_m.unwrap(),
+    );
     let r = b / a;
-    assert!(r <= 1.0 + 1e-6 && r > 0.99, "thermal / isothermal central film {r}");
+    assert!(
+        r <= 1.0 + 1e-6 && r > 0.99,
+        "thermal / isothermal central film {r}"
+    );
 }
 
 /// Energy: heat generated (shear + compression) = heat into the two bodies + heat convected out,
@@ -83,7 +123,12 @@ fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
 /// tolerance: measured 2e-4.
 #[test]
 fn the_heat_generated_leaves_through_the_bodies_and_the_oil() {
-    let c = parse_str(THERMAL, "ehl_thermal_line.toml", &["grid.nx=256".to_string()]).unwrap();
+    let c = parse_str(
+        THERMAL,
+        "ehl_thermal_line.toml",
+        &["grid.nx=256".to_string()],
+    )
+    .unwrap();
     let s = solve(&c);
     let m = &s.summary;
     assert!(m.converged, "{}", m.termination);
@@ -128,7 +173,11 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
     let iso = solve(&case("", &sets));
     let c = case("[thermal]\nviscosity_beta = 0.03\n", &sets);
     let th = solve(&c);
-    assert!(iso.summary.converged && th.summary.converged, "{}", th.summary.termination);
+    assert!(
+        iso.summary.converged && th.summary.converged,
+        "{}",
+        th.summary.termination
+    );
     let ue = c.motion.as_ref().unwrap().entrainment_speed;
     let l = ehl::reference::thermal::thermal_loading(0.04, 0.03, ue, 0.14);
     let ph_e = iso.summary.hertz_pressure_pa / c.reduced_modulus();
@@ -151,7 +200,10 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 fn film_reduction_against_the_inlet_heating_fits() {
     let (r1, l1, mw1, gu1) = reduction(3.6e-11, 256);
     let (r2, l2, mw2, gu2) = reduction(7.3e-11, 256);
-    assert!(l1 < l2 && r2 < r1 && r1 < 1.0, "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}");
+    assert!(
+        l1 < l2 && r2 < r1 && r1 < 1.0,
+        "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}"
+    );
     for (r, l, mw, gu) in [(r1, l1, mw1, gu1), (r2, l2, mw2, gu2)] {
         let ratio = (1.0 - r) / (1.0 - 0.5 * (mw + gu));
         assert!(

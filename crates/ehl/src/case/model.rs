@@ -282,14 +282,24 @@ impl StressSpec {
     pub fn depths(&self, dx: f64, dy: f64) -> Vec<f64> {
         let n = self.layers;
         match self.spacing {
-            DepthSpacing::Uniform => (1..=n).map(|k| self.depth_m * k as f64 / n as f64).collect(),
+            DepthSpacing::Uniform => (1..=n)
+                .map(|k| self.depth_m * k as f64 / n as f64)
+                .collect(),
             DepthSpacing::Geometric => {
                 let z1 = (0.5 * dx.min(dy)).min(self.depth_m / n as f64);
                 if n == 1 {
                     return vec![self.depth_m];
                 }
                 let r = (self.depth_m / z1).powf(1.0 / (n - 1) as f64);
-                (0..n).map(|k| if k + 1 == n { self.depth_m } else { z1 * r.powi(k as i32) }).collect()
+                (0..n)
+                    .map(|k| {
+                        if k + 1 == n {
+                            self.depth_m
+                        } else {
+                            z1 * r.powi(k as i32)
+                        }
+                    })
+                    .collect()
             }
         }
     }

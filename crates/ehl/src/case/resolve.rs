@@ -764,14 +764,17 @@ fn lubricant(top: &Sec, e_red: f64) -> R<(Lubricant, RheologyTables)> {
         _ => DensityModel::DowsonHigginson,
     };
     let (rheology, tables) = rheology(&s)?;
-    Ok((Lubricant {
-        viscosity,
-        pressure_viscosity_coefficient: alpha,
-        density,
-        viscosity_model,
-        density_model,
-        rheology,
-    }, tables))
+    Ok((
+        Lubricant {
+            viscosity,
+            pressure_viscosity_coefficient: alpha,
+            density,
+            viscosity_model,
+            density_model,
+            rheology,
+        },
+        tables,
+    ))
 }
 
 fn rheology(s: &Sec) -> R<(Rheology, RheologyTables)> {
@@ -799,7 +802,11 @@ fn rheology(s: &Sec) -> R<(Rheology, RheologyTables)> {
             p.positive(k, unit)
         }
     };
-    let lsc = param("limiting_shear_coefficient", "dimensionless, tau_L / p", false)?;
+    let lsc = param(
+        "limiting_shear_coefficient",
+        "dimensionless, tau_L / p",
+        false,
+    )?;
     let rheology = match model {
         "carreau" => {
             let shear_modulus = param("shear_modulus", "Pa", true)?.unwrap_or(f64::NAN);
@@ -856,14 +863,24 @@ fn temperature_pairs(s: &Sec, k: &str, unit: &str) -> R<Option<TemperatureTable>
             return Err(bad(format!("entry {i} is not a pair of numbers")));
         };
         if !(t > 0.0 && t.is_finite()) {
-            return Err(bad(format!("entry {i}: the temperature must be a positive number of K, found {}", fmt_num(t))));
+            return Err(bad(format!(
+                "entry {i}: the temperature must be a positive number of K, found {}",
+                fmt_num(t)
+            )));
         }
         if !(v > 0.0 && v.is_finite()) {
-            return Err(bad(format!("entry {i}: the value must be positive and finite, found {}", fmt_num(v))));
+            return Err(bad(format!(
+                "entry {i}: the value must be positive and finite, found {}",
+                fmt_num(v)
+            )));
         }
         if let Some(&(t0, _)) = pairs.last() {
             if t <= t0 {
-                return Err(bad(format!("the temperatures must increase, found {} after {}", fmt_num(t), fmt_num(t0))));
+                return Err(bad(format!(
+                    "the temperatures must increase, found {} after {}",
+                    fmt_num(t),
+                    fmt_num(t0)
+                )));
             }
         }
         pairs.push((t, v));
@@ -1802,7 +1819,10 @@ fn stress(top: &Sec, kind: Kind, b: f64, transient: bool) -> R<Option<StressSpec
         Some(other) => {
             return Err(s.err(
                 "body",
-                format!("expected 1, 2 or \"both\" (the body whose stress is computed), found {}", describe(other)),
+                format!(
+                    "expected 1, 2 or \"both\" (the body whose stress is computed), found {}",
+                    describe(other)
+                ),
             ))
         }
     };
@@ -1817,15 +1837,22 @@ fn stress(top: &Sec, kind: Kind, b: f64, transient: bool) -> R<Option<StressSpec
         (None, Some(d)) => d,
         (None, None) => 3.0 * b,
     };
-    let layers = s.count("layers", "the number of depth layers", 1)?.unwrap_or(48);
+    let layers = s
+        .count("layers", "the number of depth layers", 1)?
+        .unwrap_or(48);
     if layers > 1024 {
-        return Err(s.err("layers", format!("{layers} layers is more than 1024; the cost grows with the layers")));
+        return Err(s.err(
+            "layers",
+            format!("{layers} layers is more than 1024; the cost grows with the layers"),
+        ));
     }
     let spacing = match s.choice("spacing", &["geometric", "uniform"])? {
         Some("uniform") => DepthSpacing::Uniform,
         _ => DepthSpacing::Geometric,
     };
-    let friction = s.non_negative("friction", "(Coulomb coefficient)")?.unwrap_or(0.0);
+    let friction = s
+        .non_negative("friction", "(Coulomb coefficient)")?
+        .unwrap_or(0.0);
     if friction != 0.0 && kind == Kind::Ehl {
         return Err(s.err(
             "friction",
@@ -1943,7 +1970,10 @@ fn thermal(
                 (tables.shear_modulus.is_some(), "shear_modulus"),
                 (tables.power_law_index.is_some(), "power_law_index"),
                 (tables.eyring_stress.is_some(), "eyring_stress"),
-                (tables.limiting_shear_coefficient.is_some(), "limiting_shear_coefficient"),
+                (
+                    tables.limiting_shear_coefficient.is_some(),
+                    "limiting_shear_coefficient",
+                ),
             ]
             .into_iter()
             .find(|v| v.0)
@@ -1990,7 +2020,9 @@ fn thermal(
         // S0 = 1.1, a typical mineral oil (Roelands 1966; Habchi et al. 2008)
         (None, None) => ViscosityTemperature::from_s0(1.1, eta0, t0),
     };
-    let thermal_expansion = s.non_negative("thermal_expansion", "1/K")?.unwrap_or(6.5e-4);
+    let thermal_expansion = s
+        .non_negative("thermal_expansion", "1/K")?
+        .unwrap_or(6.5e-4);
     if thermal_expansion * 500.0 >= 1.0 {
         return Err(s.err(
             "thermal_expansion",
@@ -1999,7 +2031,13 @@ fn thermal(
     }
     let conductivity = s.positive("conductivity", "W/(m K)")?.unwrap_or(0.14);
     let heat_capacity = s.positive("heat_capacity", "J/(kg K)")?.unwrap_or(2000.0);
-    let points = s.count("points_across_film", "collocation points across the film", 3)?.unwrap_or(7);
+    let points = s
+        .count(
+            "points_across_film",
+            "collocation points across the film",
+            3,
+        )?
+        .unwrap_or(7);
     if points > 33 {
         return Err(s.err(
             "points_across_film",
@@ -2017,8 +2055,12 @@ fn thermal(
         };
         let steel = BodyThermal::steel();
         Ok(BodyThermal {
-            conductivity: b.positive("conductivity", "W/(m K)")?.unwrap_or(steel.conductivity),
-            heat_capacity: b.positive("heat_capacity", "J/(kg K)")?.unwrap_or(steel.heat_capacity),
+            conductivity: b
+                .positive("conductivity", "W/(m K)")?
+                .unwrap_or(steel.conductivity),
+            heat_capacity: b
+                .positive("heat_capacity", "J/(kg K)")?
+                .unwrap_or(steel.heat_capacity),
             density: b.positive("density", "kg/m^3")?.unwrap_or(steel.density),
         })
     };

@@ -925,10 +925,16 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     assert_eq!(th.lubricant.points_across_film, 7);
     let vt = th.lubricant.viscosity_temperature;
     assert_eq!(vt.s0, 1.1);
-    assert!(close(vt.beta, 1.1 * (0.04f64.ln() + 9.67) / (343.0 - 138.0), 1e-12));
+    assert!(close(
+        vt.beta,
+        1.1 * (0.04f64.ln() + 9.67) / (343.0 - 138.0),
+        1e-12
+    ));
     // n interpolated to the inlet temperature, halfway between 313 and 373 K
     match c.lubricant.as_ref().unwrap().rheology {
-        Rheology::Carreau { power_law_index, .. } => {
+        Rheology::Carreau {
+            power_law_index, ..
+        } => {
             assert!(close(power_law_index, 0.5 * (0.57 + 0.993), 1e-12))
         }
         ref r => panic!("{r:?}"),
@@ -945,11 +951,31 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     assert_eq!(th.lubricant.viscosity_temperature.beta, 0.03);
 
     let cases: &[(&str, &str, &str)] = &[
-        ("\n[thermal]\ninlet_temperature = 100.0\n", "thermal.inlet_temperature", "pole"),
-        ("\n[thermal]\nviscosity_beta = 0.03\nviscosity_temperature = 1.1\n", "thermal.viscosity_beta", "once"),
-        ("\n[thermal]\npoints_across_film = 2\n", "thermal.points_across_film", ""),
-        ("\n[thermal]\nconductivity = -1.0\n", "thermal.conductivity", ""),
-        ("\n[thermal]\nthermal_expansion = 0.01\n", "thermal.thermal_expansion", "vanish"),
+        (
+            "\n[thermal]\ninlet_temperature = 100.0\n",
+            "thermal.inlet_temperature",
+            "pole",
+        ),
+        (
+            "\n[thermal]\nviscosity_beta = 0.03\nviscosity_temperature = 1.1\n",
+            "thermal.viscosity_beta",
+            "once",
+        ),
+        (
+            "\n[thermal]\npoints_across_film = 2\n",
+            "thermal.points_across_film",
+            "",
+        ),
+        (
+            "\n[thermal]\nconductivity = -1.0\n",
+            "thermal.conductivity",
+            "",
+        ),
+        (
+            "\n[thermal]\nthermal_expansion = 0.01\n",
+            "thermal.thermal_expansion",
+            "vanish",
+        ),
     ];
     for (extra, key, word) in cases {
         let (k, m) = err(&format!("{EHL}{extra}"), &[]);
@@ -960,11 +986,17 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     let (k, m) = err(&format!("{EHL}{carreau}"), &[]);
     assert_eq!(k, "lubricant.rheology.power_law_index");
     assert!(m.contains("[thermal]"), "{m}");
-    let bad = carreau.replace("[[313.0, 0.57], [373.0, 0.993]]", "[[373.0, 0.57], [313.0, 0.993]]");
+    let bad = carreau.replace(
+        "[[313.0, 0.57], [373.0, 0.993]]",
+        "[[373.0, 0.57], [313.0, 0.993]]",
+    );
     let (k, m) = err(&format!("{EHL}{bad}\n[thermal]\n"), &[]);
     assert_eq!(k, "lubricant.rheology.power_law_index");
     assert!(m.contains("increase"), "{m}");
-    let bad = carreau.replace("[[313.0, 0.57], [373.0, 0.993]]", "[[313.0, 0.57], [373.0, 1.5]]");
+    let bad = carreau.replace(
+        "[[313.0, 0.57], [373.0, 0.993]]",
+        "[[313.0, 0.57], [373.0, 1.5]]",
+    );
     let (k, _) = err(&format!("{EHL}{bad}\n[thermal]\n"), &[]);
     assert_eq!(k, "lubricant.rheology.power_law_index");
     // a dry contact has no film to heat; a thermal transient is not built yet

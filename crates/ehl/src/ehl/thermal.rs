@@ -146,7 +146,12 @@ fn run(
                 f64::INFINITY
             };
         }
-        change = match contact.update(&p_si, &h_si, &sys.active, Some((&factors.flow, &factors.couette))) {
+        change = match contact.update(
+            &p_si,
+            &h_si,
+            &sys.active,
+            Some((&factors.flow, &factors.couette)),
+        ) {
             Ok(c) => c,
             Err(e) => {
                 failure = Some(Termination::ThermalFailed(e.to_string()));
@@ -157,7 +162,11 @@ fn run(
         // the distance to the fixed point, from the contraction rho of the last two changes:
         // e ~ change rho / (1 - rho) (a linear fixed point; measured rho ~ 0.87 on the thesis
         // Table 3.7 line at SRR 0.3, where the change alone would stop 7x too early)
-        let rho = if prev.is_finite() && change < prev { change / prev } else { 0.99 };
+        let rho = if prev.is_finite() && change < prev {
+            change / prev
+        } else {
+            0.99
+        };
         estimate = change * rho / (1.0 - rho);
         prev = change;
         let settled = estimate <= thermal.tolerance_k;
@@ -180,7 +189,7 @@ fn run(
         }
     }
     let newton_steps = stats.newton;
-    let mut end = end.unwrap_or_else(|| super::StageEnd {
+    let mut end = end.unwrap_or(super::StageEnd {
         converged: false,
         reason: Termination::MaxIterations(0),
         residual: f64::INFINITY,
@@ -189,7 +198,7 @@ fn run(
     if let Some(f) = failure {
         end.converged = false;
         end.reason = f;
-    } else if end.converged && !(estimate <= thermal.tolerance_k) {
+    } else if end.converged && (estimate.is_nan() || estimate > thermal.tolerance_k) {
         end.converged = false;
         end.reason = Termination::ThermalNotSettled {
             outer,
@@ -197,7 +206,12 @@ fn run(
         };
     }
     let mut ehl = finish(problem, &mut sys, st, end, &stats);
-    contact.fill_laws(&ehl.pressure, &sys.active, &mut ehl.viscosity, &mut ehl.density);
+    contact.fill_laws(
+        &ehl.pressure,
+        &sys.active,
+        &mut ehl.viscosity,
+        &mut ehl.density,
+    );
     ThermalResult {
         ehl,
         outer_iterations: outer,

@@ -44,9 +44,9 @@ pub mod csv;
 pub mod npz;
 pub mod plot;
 pub mod stress;
-pub mod temperature;
 pub mod summary;
 pub mod synthetic;
+pub mod temperature;
 pub mod transient;
 pub mod vtk;
 

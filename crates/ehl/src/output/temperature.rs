@@ -40,7 +40,10 @@ fn write_npz(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
         let a = Array2::from_shape_vec((g.ny, g.nx), v.clone()).map_err(|e| npz.err(e))?;
         npz.add(name, &a)?;
     }
-    for (name, v) in [("film_section", &t.film_section), ("section_z", &t.section_z)] {
+    for (name, v) in [
+        ("film_section", &t.film_section),
+        ("section_z", &t.section_z),
+    ] {
         let a = Array2::from_shape_vec((t.nz, g.nx), v.clone()).map_err(|e| npz.err(e))?;
         npz.add(name, &a)?;
     }
@@ -52,15 +55,29 @@ fn write_npz(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
 fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<()> {
     let g = &solution.grid;
     let j = t.section_row;
-    let row = |v: &[f64]| -> Vec<f64> { v[j * g.nx..(j + 1) * g.nx].iter().map(|x| x - t.inlet).collect() };
+    let row = |v: &[f64]| -> Vec<f64> {
+        v[j * g.nx..(j + 1) * g.nx]
+            .iter()
+            .map(|x| x - t.inlet)
+            .collect()
+    };
     let series = [
         ("film, maximum across z", row(&t.max_film), RED),
         ("film, mid-film", row(&t.mid_film), MAGENTA),
         ("surface of body 1 (z = 0)", row(&t.surface_1), BLUE),
         ("surface of body 2 (z = h)", row(&t.surface_2), GREEN),
     ];
-    let finite_max = |v: &[f64]| v.iter().cloned().filter(|x| x.is_finite()).fold(0.0f64, f64::max);
-    let top = series.iter().map(|s| finite_max(&s.1)).fold(0.0f64, f64::max).max(1e-3);
+    let finite_max = |v: &[f64]| {
+        v.iter()
+            .cloned()
+            .filter(|x| x.is_finite())
+            .fold(0.0f64, f64::max)
+    };
+    let top = series
+        .iter()
+        .map(|s| finite_max(&s.1))
+        .fold(0.0f64, f64::max)
+        .max(1e-3);
     let low = series
         .iter()
         .flat_map(|s| s.1.iter().cloned())
@@ -72,13 +89,21 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
     let (x_lo, x_hi) = match (loaded.first(), loaded.last()) {
         (Some(&a), Some(&b)) if b > a => {
             let w = g.x(b) - g.x(a);
-            ((g.x(a) - w / 3.0).max(g.x_min), (g.x(b) + w / 3.0).min(g.x_max()))
+            (
+                (g.x(a) - w / 3.0).max(g.x_min),
+                (g.x(b) + w / 3.0).min(g.x_max()),
+            )
         }
         _ => (g.x_min, g.x_max()),
     };
     let mm = 1e3;
     let xs: Vec<f64> = (0..g.nx).map(|i| g.x(i) * mm).collect();
-    let tmax = t.film_section.iter().cloned().filter(|x| x.is_finite()).fold(t.inlet, f64::max);
+    let tmax = t
+        .film_section
+        .iter()
+        .cloned()
+        .filter(|x| x.is_finite())
+        .fold(t.inlet, f64::max);
     let span = (tmax - t.inlet).max(1e-3);
     render_sized(path, (1000, 860), |root| {
         let (upper, lower) = root.split_vertically(430);
@@ -109,9 +134,17 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
                 .map(|(x, y)| (*x, *y))
                 .collect();
             chart
-                .draw_series(LineSeries::new(pts, ShapeStyle::from(color).stroke_width(2)))?
+                .draw_series(LineSeries::new(
+                    pts,
+                    ShapeStyle::from(color).stroke_width(2),
+                ))?
                 .label(*name)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ShapeStyle::from(color).stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(
+                        vec![(x, y), (x + 20, y)],
+                        ShapeStyle::from(color).stroke_width(2),
+                    )
+                });
         }
         chart
             .configure_series_labels()
@@ -123,7 +156,10 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
 
         let (main, bar) = lower.split_horizontally(880);
         let mut sec = ChartBuilder::on(&main)
-            .caption("Film temperature across the film (z/h: 0 at body 1, 1 at body 2)", text_style(18.0, BLACK))
+            .caption(
+                "Film temperature across the film (z/h: 0 at body 1, 1 at body 2)",
+                text_style(18.0, BLACK),
+            )
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(70)
@@ -145,13 +181,23 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
             for py in 0..h {
                 let zeta = 1.0 - (py as f64 + 0.5) / h as f64;
                 // linear between the collocation points bracketing zeta
-                let zk = |k: usize| if hz > 0.0 { t.section_z[k * g.nx + i] / hz } else { k as f64 / (nz - 1) as f64 };
+                let zk = |k: usize| {
+                    if hz > 0.0 {
+                        t.section_z[k * g.nx + i] / hz
+                    } else {
+                        k as f64 / (nz - 1) as f64
+                    }
+                };
                 let mut k = 0;
                 while k + 2 < nz && zk(k + 1) < zeta {
                     k += 1;
                 }
                 let (z0, z1) = (zk(k), zk(k + 1));
-                let s = if z1 > z0 { ((zeta - z0) / (z1 - z0)).clamp(0.0, 1.0) } else { 0.0 };
+                let s = if z1 > z0 {
+                    ((zeta - z0) / (z1 - z0)).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
                 let a = t.film_section[k * g.nx + i];
                 let b = t.film_section[(k + 1) * g.nx + i];
                 let v = a + s * (b - a);
@@ -170,7 +216,17 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
             .margin_right(10)
             .right_y_label_area_size(70)
             .build_cartesian_2d(0.0..1.0, 0.0..span)?;
-        draw_colorbar_on(&mut barc, ColorMap::Inferno, 8, Fonts { label: 14.0, desc: 16.0 }, Some(5), "T - T0 (K)")
+        draw_colorbar_on(
+            &mut barc,
+            ColorMap::Inferno,
+            8,
+            Fonts {
+                label: 14.0,
+                desc: 16.0,
+            },
+            Some(5),
+            "T - T0 (K)",
+        )
     })
     .map_err(|e| match e {
         crate::Error::Output { .. } => e,

@@ -193,7 +193,12 @@ pub fn check_report(case: &Case) -> CheckReport {
     if let (Some(th), Some(m), Some(lub)) = (&case.thermal, &case.motion, &case.lubricant) {
         let tl = &th.lubricant;
         let beta = tl.viscosity_temperature.beta;
-        let l = super::thermal::thermal_loading(lub.viscosity, beta, m.entrainment_speed, tl.conductivity);
+        let l = super::thermal::thermal_loading(
+            lub.viscosity,
+            beta,
+            m.entrainment_speed,
+            tl.conductivity,
+        );
         let srr = m.slide_to_roll;
         let b = report.hertz.b;
         report.thermal = Some(ThermalCheck {
@@ -380,11 +385,31 @@ impl fmt::Display for CheckReport {
         }
         if let Some(t) = &self.thermal {
             writeln!(f, "thermal ([thermal])")?;
-            row(f, "inlet temperature T0", fixed(t.inlet_temperature, 2), "K")?;
+            row(
+                f,
+                "inlet temperature T0",
+                fixed(t.inlet_temperature, 2),
+                "K",
+            )?;
             row(f, "viscosity-temperature beta", sci(t.beta), "1/K")?;
-            row(f, "thermal loading L = eta0 beta u_e^2/k_f", sci(t.loading), "")?;
-            row(f, "film reduction, Murch-Wilson (rolling)", fixed(t.murch_wilson, 3), "")?;
-            row(f, "film reduction, Gupta et al. (this SRR)", fixed(t.gupta, 3), "")?;
+            row(
+                f,
+                "thermal loading L = eta0 beta u_e^2/k_f",
+                sci(t.loading),
+                "",
+            )?;
+            row(
+                f,
+                "film reduction, Murch-Wilson (rolling)",
+                fixed(t.murch_wilson, 3),
+                "",
+            )?;
+            row(
+                f,
+                "film reduction, Gupta et al. (this SRR)",
+                fixed(t.gupta, 3),
+                "",
+            )?;
             row(
                 f,
                 "Peclet numbers u b/(2 kappa) of body 1, 2",

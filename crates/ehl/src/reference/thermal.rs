@@ -28,7 +28,8 @@ pub fn wilson_sheu(l: f64, srr: f64) -> f64 {
 /// line-contact solutions: (1 - 13.2 (p_h/E') L^0.42) / (1 + 0.213 (1 + 2.23 SRR^0.83) L^0.64),
 /// p_h the Hertz pressure, E' the reduced modulus.
 pub fn gupta(l: f64, srr: f64, ph_over_e: f64) -> f64 {
-    (1.0 - 13.2 * ph_over_e * l.powf(0.42)) / (1.0 + 0.213 * (1.0 + 2.23 * srr.abs().powf(0.83)) * l.powf(0.64))
+    (1.0 - 13.2 * ph_over_e * l.powf(0.42))
+        / (1.0 + 0.213 * (1.0 + 2.23 * srr.abs().powf(0.83)) * l.powf(0.64))
 }
 
 /// Blok's flash temperature of a line contact (K) at high Peclet number, with a semi-elliptic
@@ -39,8 +40,10 @@ pub fn gupta(l: f64, srr: f64, ph_over_e: f64) -> f64 {
 /// mu the friction coefficient, w' the load per unit length (N/m), u1, u2 the surface speeds
 /// (m/s), a the Hertz half-width (m), k rho c of the (equal) bodies (Blok 1937; ISO/TR 13989-1;
 /// thermal.md [derived]).
+#[allow(clippy::too_many_arguments)]
 pub fn blok_flash(mu: f64, w: f64, u1: f64, u2: f64, a: f64, k: f64, rho: f64, c: f64) -> f64 {
-    1.11 * mu * w * (u1.abs().sqrt() - u2.abs().sqrt()).abs() / ((k * rho * c).sqrt() * (2.0 * a).sqrt())
+    1.11 * mu * w * (u1.abs().sqrt() - u2.abs().sqrt()).abs()
+        / ((k * rho * c).sqrt() * (2.0 * a).sqrt())
 }
 
 /// Exact plane Couette flow with shear heating between walls at T0 (thermal.md [derived]):
@@ -52,7 +55,11 @@ pub fn blok_flash(mu: f64, w: f64, u1: f64, u2: f64, a: f64, k: f64, rho: f64, c
 /// Returns (tau / tau_iso, beta (T_mid - T0)).
 pub fn couette(lambda: f64) -> (f64, f64) {
     let s = (lambda / 8.0).sqrt().asinh();
-    let ratio = if s > 0.0 { 2.0 * s / (2.0 * s).sinh() } else { 1.0 };
+    let ratio = if s > 0.0 {
+        2.0 * s / (2.0 * s).sinh()
+    } else {
+        1.0
+    };
     (ratio, 2.0 * s.cosh().ln())
 }
 
@@ -77,7 +84,10 @@ mod tests {
             assert!((m / g - 1.0).abs() < 0.05, "L {l}: {m} vs {g}");
         }
         let (ws, g) = (wilson_sheu(1.0, 0.5), gupta(1.0, 0.5, 0.005));
-        assert!((ws - 0.42).abs() < 0.01 && (g - 0.63).abs() < 0.01, "{ws} {g}");
+        assert!(
+            (ws - 0.42).abs() < 0.01 && (g - 0.63).abs() < 0.01,
+            "{ws} {g}"
+        );
     }
 
     /// The Couette closed form against a shooting solution of k T'' = -eta u'^2 (tau constant
@@ -142,8 +152,14 @@ mod tests {
             }
             let t = 0.5 * (lo + hi);
             let tm = lower(t).expect("a lower branch below the turning point").0;
-            assert!((t - want_t).abs() < 1e-6, "Lambda {lambda}: {t} vs {want_t}");
-            assert!((tm - want_mid).abs() < 1e-6, "Lambda {lambda}: {tm} vs {want_mid}");
+            assert!(
+                (t - want_t).abs() < 1e-6,
+                "Lambda {lambda}: {t} vs {want_t}"
+            );
+            assert!(
+                (tm - want_mid).abs() < 1e-6,
+                "Lambda {lambda}: {tm} vs {want_mid}"
+            );
         }
     }
 }

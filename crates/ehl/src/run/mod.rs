@@ -443,11 +443,13 @@ fn add_stress(case: &Case, solution: &mut Solution, progress: &dyn Progress) -> 
         let smooth = solve(&stress::smooth_reference(case), &Silent)?;
         if !smooth.summary.converged {
             solution.summary.warnings.push(
-                "life_ratio: the smooth reference solve did not converge; the ratio is left out".into(),
+                "life_ratio: the smooth reference solve did not converge; the ratio is left out"
+                    .into(),
             );
-        } else if let (Some(i_ref), Some(i)) =
-            (smooth.summary.fatigue_integral, solution.summary.fatigue_integral)
-        {
+        } else if let (Some(i_ref), Some(i)) = (
+            smooth.summary.fatigue_integral,
+            solution.summary.fatigue_integral,
+        ) {
             solution.summary.smooth_fatigue_integral = Some(i_ref);
             let ratio = crate::stress::fatigue::life_ratio(i_ref, i, params.weibull_slope);
             if ratio.is_finite() {
@@ -778,7 +780,9 @@ fn solve_ehl(
         let mut told = |outer: usize, change: f64| {
             progress.report(
                 0.9,
-                &format!("thermal: outer iteration {outer}, film temperature change {change:.2e} K"),
+                &format!(
+                    "thermal: outer iteration {outer}, film temperature change {change:.2e} K"
+                ),
             )
         };
         let run = thermal::solve(case, &problem, &params, &r, &mut told)?;

@@ -30,7 +30,9 @@ pub fn solve(
     observer: &mut (dyn FnMut(usize, f64) + Send),
 ) -> Result<ThermalRun> {
     let (Some(spec), Some(lub), Some(m)) = (&case.thermal, &case.lubricant, &case.motion) else {
-        return Err(Error::Solver("a thermal run needs [thermal], [lubricant] and [motion]".into()));
+        return Err(Error::Solver(
+            "a thermal run needs [thermal], [lubricant] and [motion]".into(),
+        ));
     };
     let laws = ThermalLaws::new(lub, &spec.lubricant);
     let mut contact = ThermalContact::new(problem.grid, laws, spec.bodies, m.u1(), m.u2())?;
@@ -58,12 +60,23 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
     let t = &run.fields;
     let g = run.contact.grid();
     let argmax = |v: &[f64]| {
-        (0..v.len()).fold(0, |m, k| if v[k].is_finite() && (!v[m].is_finite() || v[k] > v[m]) { k } else { m })
+        (0..v.len()).fold(0, |m, k| {
+            if v[k].is_finite() && (!v[m].is_finite() || v[k] > v[m]) {
+                k
+            } else {
+                m
+            }
+        })
     };
     let k = argmax(&t.max_film);
     summary.max_film_temperature_k = Some(t.max_film[k]);
     summary.max_film_temperature_at_m = Some([g.x(k % g.nx), g.y(k / g.nx)]);
-    let smax = |v: &[f64]| v.iter().cloned().filter(|x| x.is_finite()).fold(t.inlet, f64::max);
+    let smax = |v: &[f64]| {
+        v.iter()
+            .cloned()
+            .filter(|x| x.is_finite())
+            .fold(t.inlet, f64::max)
+    };
     let s = [smax(&t.surface_1), smax(&t.surface_2)];
     summary.max_surface_temperature_k = Some(s);
     summary.flash_temperature_k = Some(s[0].max(s[1]) - t.inlet);

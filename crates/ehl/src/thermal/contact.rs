@@ -30,8 +30,8 @@ use super::film_energy::{solve_lines, Line, LineOptions, LineSolution};
 use super::solid::{MovingHalfSpace, SolidThermal};
 use crate::grid::Grid;
 use crate::lubricant::rheology::{effective_viscosity, limiting_shear_stress};
-use crate::lubricant::Rheology;
 use crate::lubricant::temperature::ThermalLaws;
+use crate::lubricant::Rheology;
 use crate::{Error, Result};
 
 impl FilmLaws for ThermalLaws {
@@ -76,6 +76,10 @@ fn unlimited(r: Rheology) -> Rheology {
         Rheology::Newtonian => Rheology::Newtonian,
     }
 }
+
+/// A grid line's film starts at its first cell whose film is at most this many times the
+/// line's thinnest (upstream the oil is taken at the inlet temperature; see `update`).
+pub const INLET_FILM_RATIO: f64 = 20.0;
 
 /// Controls of [`ThermalContact::update`].
 #[derive(Debug, Clone, Copy)]
@@ -150,6 +154,8 @@ pub struct ThermalContact {
     surface: [Vec<f64>; 2],
     /// per grid line, the last solution (None before the first update)
     lines: Vec<Option<LineSolution>>,
+    /// per grid line, the first cell of its film (see [`INLET_FILM_RATIO`])
+    start: Vec<usize>,
     /// cells taking part in the last update
     active: Vec<bool>,
     /// the pressure and film of the last update
@@ -162,7 +168,13 @@ impl ThermalContact {
     /// The model of a contact on `grid` whose surfaces move at `u1`, `u2` (m/s), with the
     /// lubricant laws `laws` (their `points_across_film` collocation points) and the bodies'
     /// properties.
-    pub fn new(grid: Grid, laws: ThermalLaws, bodies: [SolidThermal; 2], u1: f64, u2: f64) -> Result<Self> {
+    pub fn new(
+        grid: Grid,
+        laws: ThermalLaws,
+        bodies: [SolidThermal; 2],
+        u1: f64,
+        u2: f64,
+    ) -> Result<Self> {
         let solid = |k: usize, u: f64| {
             MovingHalfSpace::new(&grid, bodies[k], u).map_err(|e| {
                 Error::Solver(format!("the surface temperature of body {}: {e}", k + 1))
@@ -187,6 +199,7 @@ impl ThermalContact {
             film: vec![vec![t0; grid.nx * nz]; grid.ny],
             surface: [vec![t0; n], vec![t0; n]],
             lines: vec![None; grid.ny],
+            start: vec![0; grid.ny],
             active: vec![false; n],
             p: vec![0.0; n],
             h: vec![0.0; n],
@@ -260,13 +273,37 @@ impl ThermalContact {
             .map(|j| {
                 (0..nx)
                     .rev()
-                    .find(|&i| active[j * nx + i] && h[j * nx + i].is_finite() && pp[j * nx + i] > 0.0)
+                    .find(|&i| {
+                        active[j * nx + i] && h[j * nx + i].is_finite() && pp[j * nx + i] > 0.0
+                    })
                     .map_or(0, |i| (i + 2).min(nx))
             })
             .collect();
-        let wet: Vec<bool> = (0..n)
-            .map(|k| active[k] && h[k].is_finite() && k % nx < len[k / nx])
+        // and starts where the film is at most INLET_FILM_RATIO times the row's thinnest: the
+        // far inlet, a thick film with a reverse flow that 7 points across cannot resolve, took
+        // the film iteration to 3.6e6 K there (thesis Table 3.7 line at SRR 0.5, h 45 um, 56
+        // times the minimum); its heating is small (it scales with 1/h)
+        let start: Vec<usize> = (0..ny)
+            .map(|j| {
+                let row = j * nx..j * nx + len[j];
+                let thin = row
+                    .clone()
+                    .filter(|&k| active[k] && h[k].is_finite())
+                    .map(|k| hh[k])
+                    .fold(f64::INFINITY, f64::min);
+                row.clone()
+                    .find(|&k| hh[k] <= INLET_FILM_RATIO * thin)
+                    .map_or(len[j], |k| k - j * nx)
+                    .min(len[j].saturating_sub(1))
+            })
             .collect();
+        let wet: Vec<bool> = (0..n)
+            .map(|k| {
+                let (i, j) = (k % nx, k / nx);
+                active[k] && h[k].is_finite() && i >= start[j] && i < len[j]
+            })
+            .collect();
+        let previous = self.film.clone();
         let flux: Vec<f64> = (0..n)
             .map(|k| {
                 let fl = factors.map_or(1.0, |(f, _)| f[k]);
@@ -287,7 +324,7 @@ impl ThermalContact {
             let lines: Vec<Line> = rows
                 .iter()
                 .map(|&j| {
-                    let r = j * nx..j * nx + len[j];
+                    let r = j * nx + start[j]..j * nx + len[j];
                     Line {
                         dx: g.dx,
                         h: &hh[r.clone()],
@@ -304,8 +341,18 @@ impl ThermalContact {
                     }
                 })
                 .collect();
-            let start: Vec<Vec<f64>> = rows.iter().map(|&j| self.film[j][..len[j] * nz].to_vec()).collect();
-            let out = solve_lines(&self.rule, &self.laws, &self.oil, &lines, Some(&start), &opts.line);
+            let from: Vec<Vec<f64>> = rows
+                .iter()
+                .map(|&j| self.film[j][start[j] * nz..len[j] * nz].to_vec())
+                .collect();
+            let out = solve_lines(
+                &self.rule,
+                &self.laws,
+                &self.oil,
+                &lines,
+                Some(&from),
+                &opts.line,
+            );
             let solved = out
                 .into_iter()
                 .collect::<std::result::Result<Vec<_>, _>>()
@@ -318,7 +365,7 @@ impl ThermalContact {
                 for i in 0..nx {
                     let k = j * nx + i;
                     let (a, b) = match s {
-                        Some(s) if wet[k] => (s.energy.q1[i], s.energy.q2[i]),
+                        Some(s) if wet[k] => (s.energy.q1[i - start[j]], s.energy.q2[i - start[j]]),
                         _ => (0.0, 0.0),
                     };
                     q[0][k] = a;
@@ -326,17 +373,20 @@ impl ThermalContact {
                 }
             }
             let mut change = 0.0f64;
-            for b in 0..2 {
-                self.solids[b].temperature_rise(&q[b], &mut rise);
-                for k in 0..n {
-                    let new = t0 + rise[k];
-                    change = change.max((new - self.surface[b][k]).abs());
-                    self.surface[b][k] = new;
+            for ((solid, qb), surface) in
+                self.solids.iter_mut().zip(&q).zip(self.surface.iter_mut())
+            {
+                solid.temperature_rise(qb, &mut rise);
+                for (s, r) in surface.iter_mut().zip(&rise) {
+                    let new = t0 + r;
+                    change = change.max((new - *s).abs());
+                    *s = new;
                 }
             }
             for (j, s) in sols.iter().enumerate() {
                 if let Some(s) = s {
-                    self.film[j][..s.t.len()].copy_from_slice(&s.t);
+                    let at = start[j] * nz;
+                    self.film[j][at..at + s.t.len()].copy_from_slice(&s.t);
                 }
             }
             if change <= opts.surface_tol {
@@ -346,23 +396,27 @@ impl ThermalContact {
         // the film solved last went with the surface temperatures before the last body update:
         // one more film solve would chase a change below surface_tol
         let mut change = 0.0f64;
-        for (j, s) in sols.iter().enumerate() {
-            let Some(s) = s else { continue };
-            for i in 0..len[j] {
+        for j in 0..ny {
+            for i in 0..nx {
                 if !wet[j * nx + i] {
                     continue;
                 }
-                match &self.lines[j] {
-                    Some(old) if old.t.len() > i * nz => {
-                        for k in 0..nz {
-                            change = change.max((s.t[i * nz + k] - old.t[i * nz + k]).abs());
-                        }
-                    }
-                    _ => change = f64::INFINITY,
+                if !self.active[j * nx + i] {
+                    // a cell the last update did not solve
+                    change = f64::INFINITY;
+                    continue;
+                }
+                let (now, before) = (
+                    &self.film[j][i * nz..(i + 1) * nz],
+                    &previous[j][i * nz..(i + 1) * nz],
+                );
+                for (a, b) in now.iter().zip(before) {
+                    change = change.max((a - b).abs());
                 }
             }
         }
         self.lines = sols;
+        self.start = start;
         self.active = wet;
         self.p = pp;
         self.h = hh;
@@ -370,16 +424,37 @@ impl ThermalContact {
         Ok(change)
     }
 
-    fn profile(&self, k: usize) -> Option<&FilmProfile> {
+    /// The last solution of cell `k`'s grid line and the cell's index along it (None where
+    /// the film was not solved).
+    fn local(&self, k: usize) -> Option<(&LineSolution, usize)> {
+        if !self.active.get(k).copied().unwrap_or(false) {
+            return None;
+        }
         let (i, j) = (k % self.grid.nx, k / self.grid.nx);
-        self.lines[j].as_ref().map(|s| &s.profiles[i])
+        self.lines[j].as_ref().map(|s| (s, i - self.start[j]))
+    }
+
+    fn profile(&self, k: usize) -> Option<&FilmProfile> {
+        self.local(k).map(|(s, i)| &s.profiles[i])
+    }
+
+    /// The film temperature at the collocation points of cell `k` (K).
+    fn column_t(&self, k: usize) -> Option<&[f64]> {
+        let nz = self.nz();
+        self.local(k).map(|(s, i)| &s.t[i * nz..(i + 1) * nz])
     }
 
     /// The generalized Reynolds factors of every cell against the isothermal Newtonian laws at
     /// the inlet temperature and the pressure `p` (Pa): `flow` = (rho/eta)_e / (rho/eta)(p, T0),
     /// `couette` = rho* / rho(p, T0) (see `crate::ehl::system::ThermalFactors`); 1 on cells
     /// without material or before the first update.
-    pub fn reynolds_factors(&self, p: &[f64], active: &[bool], flow: &mut [f64], couette: &mut [f64]) {
+    pub fn reynolds_factors(
+        &self,
+        p: &[f64],
+        active: &[bool],
+        flow: &mut [f64],
+        couette: &mut [f64],
+    ) {
         let t0 = self.t0();
         let ue = 0.5 * (self.u1 + self.u2);
         for k in 0..self.grid.len() {
@@ -408,15 +483,21 @@ impl ThermalContact {
     /// Viscosity (Pa s, low-shear, at the mid-film temperature) and density (kg/m^3, mean
     /// across the film) at the pressure `p` into the output fields; cells without material keep
     /// their values.
-    pub fn fill_laws(&self, p: &[f64], active: &[bool], viscosity: &mut [f64], density: &mut [f64]) {
+    pub fn fill_laws(
+        &self,
+        p: &[f64],
+        active: &[bool],
+        viscosity: &mut [f64],
+        density: &mut [f64],
+    ) {
         let nz = self.nz();
         for k in 0..self.grid.len() {
-            if !(active[k] && self.active.get(k).copied().unwrap_or(false)) {
+            if !active[k] {
                 continue;
             }
-            let (i, j) = (k % self.grid.nx, k / self.grid.nx);
-            let Some(s) = &self.lines[j] else { continue };
-            let col = &s.t[i * nz..(i + 1) * nz];
+            let Some(col) = self.column_t(k) else {
+                continue;
+            };
             let tm = self.rule.interpolate(col, 0.5);
             let pk = p[k].max(0.0);
             let v = self.laws.viscosity(pk, tm);
@@ -441,9 +522,7 @@ impl ThermalContact {
                 max[k] = f64::NAN;
                 continue;
             }
-            let (i, j) = (k % nx, k / nx);
-            if let Some(s) = &self.lines[j] {
-                let col = &s.t[i * nz..(i + 1) * nz];
+            if let Some(col) = self.column_t(k) {
                 mid[k] = self.rule.interpolate(col, 0.5);
                 max[k] = col.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
             }
@@ -454,20 +533,28 @@ impl ThermalContact {
             .unwrap_or(0);
         let mut section = vec![f64::NAN; nz * nx];
         let mut z = vec![0.0; nz * nx];
-        if let Some(s) = &self.lines[row] {
-            for i in 0..nx {
-                let k = row * nx + i;
-                let on = self.active.get(k).copied().unwrap_or(false);
-                let hk = if film[k].is_finite() { film[k].max(0.0) } else { 0.0 };
-                for zk in 0..nz {
-                    section[zk * nx + i] = if on { s.t[i * nz + zk] } else { f64::NAN };
-                    z[zk * nx + i] = self.rule.points[zk] * hk;
-                }
+        for i in 0..nx {
+            let k = row * nx + i;
+            let col = self.column_t(k);
+            let hk = if film[k].is_finite() {
+                film[k].max(0.0)
+            } else {
+                0.0
+            };
+            for zk in 0..nz {
+                section[zk * nx + i] = col.map_or(f64::NAN, |c| c[zk]);
+                z[zk * nx + i] = self.rule.points[zk] * hk;
             }
         }
         let surf = |b: usize| -> Vec<f64> {
             (0..n)
-                .map(|k| if self.active.get(k).copied().unwrap_or(false) { self.surface[b][k] } else { f64::NAN })
+                .map(|k| {
+                    if self.active.get(k).copied().unwrap_or(false) {
+                        self.surface[b][k]
+                    } else {
+                        f64::NAN
+                    }
+                })
                 .collect()
         };
         crate::solution::TemperatureFields {
@@ -497,7 +584,7 @@ impl ThermalContact {
             // the row's film ends where its cavitated outlet begins (see `update`)
             let m = e.q1.len();
             for i in 0..m {
-                let k = j * nx + i;
+                let k = j * nx + self.start[j] + i;
                 if !self.active[k] {
                     continue;
                 }
@@ -512,7 +599,11 @@ impl ThermalContact {
             }
             hb.convected += (e.enthalpy_flux[m] - e.enthalpy_flux[0]) * g.dy;
         }
-        hb.mean_film_temperature = if count > 0 { tsum / count as f64 } else { self.t0() };
+        hb.mean_film_temperature = if count > 0 {
+            tsum / count as f64
+        } else {
+            self.t0()
+        };
         hb
     }
 

@@ -881,7 +881,7 @@ mod tests {
                 t2: &walls,
                 t_in: T0,
                 extra_source: None,
-            poiseuille_flux_x: None,
+                poiseuille_flux_x: None,
             };
             let s = solve_line(&rule, &laws, &OIL, &line, t_start.as_deref(), &opts).unwrap();
             assert!(
@@ -997,7 +997,7 @@ mod tests {
                 t2: &walls,
                 t_in: T0,
                 extra_source: None,
-            poiseuille_flux_x: None,
+                poiseuille_flux_x: None,
             };
             let opts = LineOptions {
                 shear_heating: heating,
