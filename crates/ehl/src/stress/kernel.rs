@@ -186,7 +186,7 @@ pub fn strip(x: f64, z: f64, x1: f64, x2: f64, nu: f64) -> ([f64; 6], [f64; 6]) 
 /// Parity of each stress kernel (Voigt order; normal 0..6, tangential 6..12) in (di, dj): the
 /// opposite of its corner functions' parity (the corner sum is a difference across the cell).
 /// Checked for every offset by the tests.
-const KERNEL_PARITY: [(f64, f64); 12] = [
+pub const KERNEL_PARITY: [(f64, f64); 12] = [
     (1.0, 1.0),   // normal sxx
     (1.0, 1.0),   // normal syy
     (1.0, 1.0),   // normal szz
@@ -462,6 +462,18 @@ mod tests {
                     assert!((k.get(6 + c, di, dj) - t[c]).abs() < 1e-13, "t{c} {di} {dj}");
                 }
             }
+        }
+    }
+
+    /// The tangential sigma_zz table is the normal tau_xz table bit for bit (both -z I_xzzz /
+    /// 2 pi; plane strain z^2 / (pi r^2)): the field computes one spectrum for both.
+    #[test]
+    fn tangential_szz_is_normal_sxz() {
+        for k in [
+            LayerKernel::new(7, 5, 0.3, 0.5, 0.2, 0.3),
+            LayerKernel::new(9, 1, 0.3, f64::INFINITY, 0.2, 0.3),
+        ] {
+            assert_eq!(k.quadrant(4), k.quadrant(8));
         }
     }
 }
