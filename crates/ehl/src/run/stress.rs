@@ -59,13 +59,18 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
     };
     let dy = if line { f64::INFINITY } else { grid.dy };
     let z = spec.depths(grid.dx, dy);
+    // both bodies of one Poisson ratio share the kernel spectra (what fits the cache budget)
+    let shared = shared_kernels(case).then(|| StressKernels::new(&grid, case.body1.poisson_ratio, &z, line, DEFAULT_CACHE_BYTES));
     let bodies = spec
         .bodies
         .iter()
         .map(|&k| {
             let nu = if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio };
             let q = tractions.as_ref().map(|t| t[k as usize - 1].as_slice());
-            BodyStress::new(k, &grid, &pressure, q, nu, &z, line)
+            match &shared {
+                Some(kernels) => BodyStress::from_field(k, &grid, nu, kernels.field(&pressure, q)),
+                None => BodyStress::new(k, &grid, &pressure, q, nu, &z, line),
+            }
         })
         .collect();
     Ok(Some(StressAnalysis {
@@ -74,6 +79,26 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
         step,
         with_traction: tractions.is_some(),
     }))
+}
+
+/// Whether a steady `[stress]` analysis computes both bodies with one Poisson ratio: their
+/// kernel spectra are then built once ([`StressKernels`]) and used for both.
+pub fn shared_kernels(case: &Case) -> bool {
+    case.stress.as_ref().is_some_and(|s| s.bodies.len() == 2)
+        && case.body1.poisson_ratio == case.body2.poisson_ratio
+}
+
+/// Bytes of the kernel spectra shared by the two bodies of a steady analysis
+/// ([`shared_kernels`]; 0 otherwise), within [`DEFAULT_CACHE_BYTES`].
+pub fn shared_kernel_bytes(case: &Case) -> f64 {
+    let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case)) else {
+        return 0.0;
+    };
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let dx = (g.x_max - g.x_min) / nx as f64;
+    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    kernel_cache_bytes(nx, ny, spec.depths(dx, dy).len(), 1) as f64
 }
 
 /// The shear traction along +x on each body ([body 1, body 2], Pa) for the (non-negative)
