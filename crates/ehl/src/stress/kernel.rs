@@ -247,42 +247,34 @@ impl LayerKernel {
             return LayerKernel { nx, ny, values };
         }
         // corner functions at the vertices xi = (k - 1/2) dx, eta = (l - 1/2) dy, k = 0..=nx,
-        // l = 0..=ny (k = 0 is xi = -dx/2: the parity of each function gives it from k = 1)
-        let (vx, vy) = (nx + 1, ny + 1);
-        let mut table = vec![[0.0; N_CORNER]; vx * vy];
+        // l = 0..=ny (k = 0 is xi = -dx/2, l = 0 eta = -dy/2: the parity of each function gives
+        // them from k = 1, l = 1), formed one vertex row at a time: two rows (l = dj, dj + 1)
+        // give the cells of row dj, and the table stays in cache
+        let vx = nx + 1;
         let half_ln = |t: f64| 0.5 * (t * t + z * z).ln();
         let lsx: Vec<f64> = (0..vx).map(|k| half_ln((k as f64 - 0.5) * dx)).collect();
-        for l in 1..vy {
+        let vertex_row = |l: usize, row: &mut [[f64; N_CORNER]]| {
             let eta = (l as f64 - 0.5) * dy;
             let lsy = half_ln(eta);
             for k in 1..vx {
-                table[l * vx + k] = corner_functions_quadrant((k as f64 - 0.5) * dx, eta, z, lsx[k], lsy);
+                row[k] = corner_functions_quadrant((k as f64 - 0.5) * dx, eta, z, lsx[k], lsy);
             }
-        }
-        for l in 0..vy {
-            for k in 0..vx {
-                if k == 0 || l == 0 {
-                    let (kk, ll) = (k.max(1), l.max(1));
-                    let src = table[ll * vx + kk];
-                    let mut v = [0.0; N_CORNER];
-                    for (f, vf) in v.iter_mut().enumerate() {
-                        let sx = if k == 0 { PARITY[f].0 } else { 1.0 };
-                        let sy = if l == 0 { PARITY[f].1 } else { 1.0 };
-                        *vf = sx * sy * src[f];
-                    }
-                    table[l * vx + k] = v;
-                }
-            }
+            row[0] = std::array::from_fn(|f| PARITY[f].0 * row[1][f]);
+        };
+        let mut hi = vec![[0.0; N_CORNER]; vx];
+        let mut lo = vec![[0.0; N_CORNER]; vx];
+        vertex_row(1, &mut hi);
+        for (v, s) in lo.iter_mut().zip(&hi) {
+            *v = std::array::from_fn(|f| PARITY[f].1 * s[f]);
         }
         for dj in 0..ny {
+            if dj > 0 {
+                std::mem::swap(&mut lo, &mut hi);
+                vertex_row(dj + 1, &mut hi);
+            }
             for di in 0..nx {
                 // the cell spans xi in [(di - 1/2) dx, (di + 1/2) dx]: vertices di, di + 1
-                let (a, b, c, e) = (
-                    &table[(dj + 1) * vx + di + 1],
-                    &table[dj * vx + di + 1],
-                    &table[(dj + 1) * vx + di],
-                    &table[dj * vx + di],
-                );
+                let (a, b, c, e) = (&hi[di + 1], &lo[di + 1], &hi[di], &lo[di]);
                 let d: [f64; N_CORNER] = std::array::from_fn(|f| a[f] - b[f] - c[f] + e[f]);
                 let (n, t) = combine(&d, z, nu);
                 let at = dj * nx + di;
