@@ -9,8 +9,15 @@
 //! tests), and it halves both the time and the memory of the transforms.
 //!
 //! Cost per layer: the influence tables (14 closed-form functions on one quadrant of cell
-//! corners), 6 forward FFTs of the normal kernels (+ 6 tangential when there is a traction) and 6
-//! inverse FFTs. Layers run in parallel (rayon), each with its own FFT buffers.
+//! corners), the forward FFTs of the kernels and 6 products and inverse FFTs; the 2 load FFTs are
+//! shared by all layers. Of the 12 kernels 11 are distinct (the tangential sigma_zz is the normal
+//! tau_xz). Each padded kernel table is exactly even or odd in x and in y on the FFT's period,
+//! so its spectrum is real (parities alike) or imaginary (parities opposite): one real FFT of
+//! the sum of a real-spectrum and an imaginary-spectrum kernel gives both (6 FFTs per layer, 4
+//! without a traction), and a spectrum is kept as one f32 per bin over ky <= py/2.
+//! [`StressKernels`] keeps these spectra across evaluations of one grid and layers (a
+//! transient passage: 2 load FFTs and 6 inverse FFTs per layer and step). Layers run in
+//! parallel (rayon), each with its own FFT buffers.
 
 use super::kernel::{LayerKernel, KERNEL_PARITY};
 use crate::grid::Grid;
@@ -181,7 +188,7 @@ impl Fft2 {
             self.inv.process_with_scratch(spec, &mut b.scratch_c);
         }
         let scale = 1.0 / (self.px * self.py) as f32;
-        let even = self.px % 2 == 0;
+        let even = self.px.is_multiple_of(2);
         let mut j0 = 0;
         while j0 < self.ny {
             let rows = ROW_BLOCK.min(self.ny - j0);
@@ -302,8 +309,8 @@ impl std::fmt::Debug for StressKernels {
 
 impl StressKernels {
     /// The kernels of a half-space of Poisson ratio `nu` below `grid` at depths `z` (m, each
-    /// > 0; `plane_strain` as in [`stress_field`]), keeping the spectra of as many layers as fit
-    /// `budget_bytes` ([`layer_spectra_bytes`] each).
+    /// greater than 0; `plane_strain` as in [`stress_field`]), keeping the spectra of as many
+    /// layers as fit `budget_bytes` ([`layer_spectra_bytes`] each).
     pub fn new(grid: &Grid, nu: f64, z: &[f64], plane_strain: bool, budget_bytes: usize) -> Self {
         let (nx, ny) = (grid.nx, grid.ny);
         let fft = Fft2::new(nx, ny);
@@ -466,14 +473,13 @@ impl StressKernels {
                             own
                         }
                     };
-                    for c in 0..6 {
+                    for (c, dst) in out.iter_mut().enumerate() {
                         let terms = std::iter::once((c, &p_hat)).chain(q_hat.as_ref().map(|q| (6 + c, q)));
                         for (n, (k, hat)) in terms.enumerate() {
                             let ks = &spec[slot_of(k) * rl..(slot_of(k) + 1) * rl];
                             let sy = KERNEL_PARITY[k].1 as f32;
                             multiply(acc, ks, hat, imaginary(k), sy, n == 0, (hx, py, hy));
                         }
-                        let dst = &mut out[c];
                         fft.inverse(b, acc, |j, row| {
                             dst[j * nx..(j + 1) * nx].copy_from_slice(row);
                         });
@@ -627,9 +633,9 @@ mod tests {
                         }
                     }
                     let n = (l * ny + j) * nx + i;
-                    for c in 0..6 {
+                    for (c, want) in s.iter().enumerate() {
                         let got = f.components[c][n] as f64;
-                        assert!((got - s[c]).abs() < 1e-6 * scale, "c {c} at ({i}, {j}, {l}): {got} vs {}", s[c]);
+                        assert!((got - want).abs() < 1e-6 * scale, "c {c} at ({i}, {j}, {l}): {got} vs {want}");
                     }
                 }
             }
