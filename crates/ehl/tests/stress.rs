@@ -271,3 +271,82 @@ fn bad_stress_input_names_the_key() {
     let text = line_case(1.5e9, "layers = 0\n");
     assert!(parse_str(&text, "case.toml", &[]).is_err());
 }
+
+// ------------------------------------------------------------------ timing (ignored)
+
+/// Where the time of one steady evaluation goes: 256 x 256 cells x 64 layers, Hertz circle with
+/// traction 0.1 p (the bench's case). Medians of `STRESS_PROFILE_RUNS` (default 3) runs. Ignored
+/// (seconds); `cargo test --release -p ehl --test stress -- --ignored --nocapture profile`.
+#[test]
+#[ignore]
+fn profile_steady_256_squared_64_layers() {
+    use ehl::stress::kernel::LayerKernel;
+    use rayon::prelude::*;
+    use std::time::Instant;
+    let runs: usize = std::env::var("STRESS_PROFILE_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);
+    let n = 256;
+    let grid = Grid::new(n, n, -2.0, 2.0, -2.0, 2.0);
+    let p: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = (grid.x(k % n), grid.y(k / n));
+            (1.0 - x * x - y * y).max(0.0).sqrt()
+        })
+        .collect();
+    let q: Vec<f64> = p.iter().map(|v| 0.1 * v).collect();
+    let z: Vec<f64> = (1..=64).map(|k| 0.05 * k as f64).collect();
+    let median = |f: &mut dyn FnMut()| {
+        let mut t: Vec<f64> = (0..runs)
+            .map(|_| {
+                let s = Instant::now();
+                f();
+                s.elapsed().as_secs_f64()
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        t[runs / 2]
+    };
+    // each layer's tables dropped once built, as the field does (keeping all 64, 400 MB, would
+    // time the page faults)
+    let tables = median(&mut || {
+        z.par_iter().for_each(|&d| {
+            std::hint::black_box(LayerKernel::new(n, n, grid.dx, grid.dy, d, 0.3));
+        })
+    });
+    let shear = median(&mut || {
+        std::hint::black_box(stress_field(&grid, &p, Some(&q), 0.3, &z, false));
+    });
+    let normal = median(&mut || {
+        std::hint::black_box(stress_field(&grid, &p, None, 0.3, &z, false));
+    });
+    let window = median(&mut || {
+        std::hint::black_box(stress_field(&grid, &p, Some(&q), 0.3, &z[..24], false));
+    });
+    eprintln!(
+        "256^2 x 64 layers ({runs} runs, medians, wall s): pressure+shear {shear:.3}, pressure only {normal:.3}, \
+         influence tables alone (all layers, parallel) {tables:.3}; 24 layers with shear {window:.3}"
+    );
+    profile_cached(&grid, &p, &q, &z, &median);
+}
+
+/// The cached path of the same case: building the kernel spectra once (tables + forward FFTs),
+/// then one evaluation from them (2 load FFTs + 6 products and inverse FFTs per layer), and
+/// the 24-layer window of the passage target.
+fn profile_cached(grid: &Grid, p: &[f64], q: &[f64], z: &[f64], median: &dyn Fn(&mut dyn FnMut()) -> f64) {
+    use ehl::stress::field::StressKernels;
+    for z in [z, &z[..24]] {
+        let mut kernels = None;
+        let build = median(&mut || kernels = Some(StressKernels::new(grid, 0.3, z, false, usize::MAX)));
+        let kernels = kernels.unwrap();
+        let eval = median(&mut || {
+            std::hint::black_box(kernels.field(p, Some(q)));
+        });
+        let eval_p = median(&mut || {
+            std::hint::black_box(kernels.field(p, None));
+        });
+        eprintln!(
+            "cached, {} layers: build (tables + 6 kernel FFTs per layer) {build:.3} s, {:.1} MB; evaluation with shear {eval:.3} s, pressure only {eval_p:.3} s",
+            z.len(),
+            kernels.bytes() as f64 / 1e6
+        );
+    }
+}

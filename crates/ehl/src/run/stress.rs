@@ -4,6 +4,7 @@
 use crate::case::{Case, Kind};
 use crate::grid::Grid;
 use crate::solution::{PassageFigures, Solution, StressFigures, Summary};
+use crate::stress::field::{StressKernels, DEFAULT_CACHE_BYTES};
 use crate::stress::passage::Passage;
 use crate::stress::BodyStress;
 use crate::Result;
@@ -58,13 +59,18 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
     };
     let dy = if line { f64::INFINITY } else { grid.dy };
     let z = spec.depths(grid.dx, dy);
+    // both bodies of one Poisson ratio share the kernel spectra (what fits the cache budget)
+    let shared = shared_kernels(case).then(|| StressKernels::new(&grid, case.body1.poisson_ratio, &z, line, DEFAULT_CACHE_BYTES));
     let bodies = spec
         .bodies
         .iter()
         .map(|&k| {
             let nu = if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio };
             let q = tractions.as_ref().map(|t| t[k as usize - 1].as_slice());
-            BodyStress::new(k, &grid, &pressure, q, nu, &z, line)
+            match &shared {
+                Some(kernels) => BodyStress::from_field(k, &grid, nu, kernels.field(&pressure, q)),
+                None => BodyStress::new(k, &grid, &pressure, q, nu, &z, line),
+            }
         })
         .collect();
     Ok(Some(StressAnalysis {
@@ -73,6 +79,26 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
         step,
         with_traction: tractions.is_some(),
     }))
+}
+
+/// Whether a steady `[stress]` analysis computes both bodies with one Poisson ratio: their
+/// kernel spectra are then built once ([`StressKernels`]) and used for both.
+pub fn shared_kernels(case: &Case) -> bool {
+    case.stress.as_ref().is_some_and(|s| s.bodies.len() == 2)
+        && case.body1.poisson_ratio == case.body2.poisson_ratio
+}
+
+/// Bytes of the kernel spectra shared by the two bodies of a steady analysis
+/// ([`shared_kernels`]; 0 otherwise), within [`DEFAULT_CACHE_BYTES`].
+pub fn shared_kernel_bytes(case: &Case) -> f64 {
+    let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case)) else {
+        return 0.0;
+    };
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let dx = (g.x_max - g.x_min) / nx as f64;
+    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    kernel_cache_bytes(nx, ny, spec.depths(dx, dy).len(), 1) as f64
 }
 
 /// The shear traction along +x on each body ([body 1, body 2], Pa) for the (non-negative)
@@ -154,6 +180,30 @@ pub struct PassageRun {
     pub dang_van_seconds: f64,
     poisson: [f64; 2],
     line: bool,
+    /// the kernel spectra of the window, one per distinct Poisson ratio among the chosen
+    /// bodies, built at the first evaluation and reused by every later one and by the Dang Van
+    /// pass ([`crate::stress::field::StressKernels`]; together within
+    /// [`crate::stress::field::DEFAULT_CACHE_BYTES`])
+    kernels: Vec<StressKernels>,
+}
+
+/// The kernels of `nu` among `kernels`, built (keeping at most `budget` bytes of spectra) when
+/// missing.
+fn kernels_for<'a>(
+    kernels: &'a mut Vec<StressKernels>,
+    grid: &Grid,
+    nu: f64,
+    z: &[f64],
+    line: bool,
+    budget: usize,
+) -> &'a StressKernels {
+    match kernels.iter().position(|k| k.matches(grid, nu, z, line)) {
+        Some(i) => &kernels[i],
+        None => {
+            kernels.push(StressKernels::new(grid, nu, z, line, budget));
+            kernels.last().expect("just pushed")
+        }
+    }
 }
 
 /// The evaluation stride of the passage maps: the largest k for which neither body's material
@@ -196,6 +246,15 @@ pub fn passage_memory(case: &Case) -> f64 {
         })
         .sum::<f64>()
         + crate::stress::field::field_bytes(nx * ny, layers, 0)
+        + kernel_cache_bytes(nx, ny, layers, {
+            let mut nus: Vec<f64> = spec
+                .bodies
+                .iter()
+                .map(|&k| if k == 2 { case.body2.poisson_ratio } else { case.body1.poisson_ratio })
+                .collect();
+            nus.dedup();
+            nus.len()
+        }) as f64
         + if dv {
             let dx_t = kin.dt;
             let every = passage_every(dx, dx_t, [m.u1(), m.u2()]);
@@ -203,6 +262,14 @@ pub fn passage_memory(case: &Case) -> f64 {
         } else {
             0.0
         }
+}
+
+/// Bytes of the cached kernel spectra of a passage on `nx` x `ny` cells and `layers` window
+/// layers for `bodies` distinct Poisson ratios (at most [`DEFAULT_CACHE_BYTES`]).
+pub fn kernel_cache_bytes(nx: usize, ny: usize, layers: usize, bodies: usize) -> usize {
+    let per = crate::stress::field::layer_spectra_bytes(nx, ny);
+    let budget = DEFAULT_CACHE_BYTES / bodies.max(1);
+    bodies * (layers.min(budget / per.max(1)) * per)
 }
 
 impl PassageRun {
@@ -233,6 +300,7 @@ impl PassageRun {
             dang_van_seconds: 0.0,
             poisson: [case.body1.poisson_ratio, case.body2.poisson_ratio],
             line,
+            kernels: Vec::new(),
         })
     }
 
@@ -268,10 +336,12 @@ impl PassageRun {
             }
         };
         let mut acc_s = 0.0;
+        let budget = self.cache_budget();
         for p in self.passages.iter_mut() {
             let k = p.body as usize - 1;
             let traction = q.as_ref().map(|q| q[k].as_slice());
-            let field = crate::stress::field::stress_field(grid, &pressure, traction, self.poisson[k], &p.z, self.line);
+            let kernels = kernels_for(&mut self.kernels, grid, self.poisson[k], &p.z, self.line, budget);
+            let field = kernels.field(&pressure, traction);
             let t1 = Instant::now();
             p.accumulate(&field, t);
             acc_s += t1.elapsed().as_secs_f64();
@@ -285,17 +355,32 @@ impl PassageRun {
         }
     }
 
+    /// The share of [`DEFAULT_CACHE_BYTES`] of each body's kernel spectra: the whole for one
+    /// Poisson ratio among the chosen bodies, half each for two.
+    fn cache_budget(&self) -> usize {
+        let mut nus: Vec<f64> = self.passages.iter().map(|p| self.poisson[p.body as usize - 1]).collect();
+        nus.dedup();
+        DEFAULT_CACHE_BYTES / nus.len().max(1)
+    }
+
+    /// Bytes of the kept kernel spectra.
+    pub fn kernel_bytes(&self) -> usize {
+        self.kernels.iter().map(|k| k.bytes()).sum()
+    }
+
     /// The Dang Van second pass over the kept loads (nothing without `fatigue.dang_van`): each
     /// evaluation's field again, now that every point's mid-value is known; frees the loads.
     pub fn finish(&mut self, grid: &Grid) {
         let start = Instant::now();
         let loads = std::mem::take(&mut self.loads);
+        let budget = self.cache_budget();
         for (t, p, q) in &loads {
             let p: Vec<f64> = p.iter().map(|&v| v as f64).collect();
             for ps in self.passages.iter_mut() {
                 let k = ps.body as usize - 1;
                 let traction: Option<Vec<f64>> = q.as_ref().map(|q| q[k].iter().map(|&v| v as f64).collect());
-                let field = crate::stress::field::stress_field(grid, &p, traction.as_deref(), self.poisson[k], &ps.z, self.line);
+                let kernels = kernels_for(&mut self.kernels, grid, self.poisson[k], &ps.z, self.line, budget);
+                let field = kernels.field(&p, traction.as_deref());
                 ps.dang_van_pass(&field, *t);
             }
         }

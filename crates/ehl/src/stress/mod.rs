@@ -87,6 +87,13 @@ impl BodyStress {
         plane_strain: bool,
     ) -> Self {
         let field = field::stress_field(grid, pressure, traction, nu, z, plane_strain);
+        Self::from_field(body, grid, nu, field)
+    }
+
+    /// The measures of a computed `field` (on `grid`, its layers) of body `body`, Poisson
+    /// ratio `nu`.
+    pub fn from_field(body: u8, grid: &Grid, nu: f64, field: StressField) -> Self {
+        let z = field.z.clone();
         let n = field.len();
         let (von_mises, max_shear): (Vec<f32>, Vec<f32>) = (0..n)
             .into_par_iter()
