@@ -87,7 +87,7 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
     summary.heat_convected_w = Some(heat.convected);
     summary.energy_balance_error = Some(heat.balance_error());
     summary.thermal_iterations = Some(run.result.outer_iterations);
-    let line = case.body1.shape != crate::case::Shape::Ball;
+    let line = !case.is_point();
     if let (Some(mu), Some(spec), Some(m), true) = (mu, &case.thermal, &case.motion, line) {
         // Blok for a line contact: w' the load per length, body 1's properties for both
         let w = case.load.force_per_length;
