@@ -14,7 +14,7 @@
 
 use ehl::run::cancel::{self, CancelToken};
 use numpy::ndarray::ArrayView2;
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
@@ -762,6 +762,33 @@ impl PySolution {
     #[getter]
     fn density<'py>(slf: &Bound<'py, Self>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
         optional_view(slf, slf.get().sol.fields.density.as_ref())
+    }
+
+    /// Thermal runs (`[thermal]`): the temperatures (K) as a dict: `mid_film`, `max_film`,
+    /// `surface_1`, `surface_2` as read-only (ny, nx) views (NaN where the film was not
+    /// solved: beyond the cavitation boundary and in the far inlet), `film_section` (nz, nx, K)
+    /// and `section_z` (nz, nx, m), the film across z along the centre grid line at
+    /// `section_y` (m), and `inlet` (K). None for an isothermal run.
+    #[getter]
+    fn temperature<'py>(slf: &Bound<'py, Self>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let py = slf.py();
+        let sol = &slf.get().sol;
+        let Some(t) = sol.temperature.as_ref() else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        d.set_item("mid_film", view(slf, &t.mid_film)?)?;
+        d.set_item("max_film", view(slf, &t.max_film)?)?;
+        d.set_item("surface_1", view(slf, &t.surface_1)?)?;
+        d.set_item("surface_2", view(slf, &t.surface_2)?)?;
+        let nx = sol.grid.nx;
+        for (name, v) in [("film_section", &t.film_section), ("section_z", &t.section_z)] {
+            let a = PyArray1::from_slice(py, v).reshape([t.nz, nx])?;
+            d.set_item(name, a)?;
+        }
+        d.set_item("section_y", sol.grid.y(t.section_row))?;
+        d.set_item("inlet", t.inlet)?;
+        Ok(Some(d))
     }
 
     /// Transient runs: `timeline.csv` as a dict of columns (NumPy arrays, one entry per step,

@@ -210,6 +210,25 @@ def test_dry_solution_has_no_viscosity():
     assert sol.film.shape == (48, 48)
 
 
+def test_thermal_solution_has_temperatures():
+    c = ehl.Case.from_file(example("ehl_thermal_line.toml"))
+    c.set("grid.nx", 128)
+    sol = ehl.solve(c, progress=False)
+    assert sol.converged
+    t = sol.temperature
+    assert set(t) >= {"mid_film", "max_film", "surface_1", "surface_2", "film_section",
+                      "section_z", "section_y", "inlet"}
+    for name in ["mid_film", "max_film", "surface_1", "surface_2"]:
+        assert t[name].shape == (1, 128) and not t[name].flags.writeable, name
+    nz = c.get("thermal.points_across_film")
+    assert t["film_section"].shape == (nz, 128) and t["section_z"].shape == (nz, 128)
+    # the summary's maximum is the maximum of the map (NaN where no film was solved)
+    assert np.nanmax(t["max_film"]) == pytest.approx(sol.summary["max_film_temperature_k"], rel=1e-15)
+    assert t["inlet"] == 313.0 and np.nanmin(t["max_film"]) >= 313.0 - 30.0
+    # an isothermal run has none
+    assert ehl.solve(small_ehl(), progress=False).temperature is None
+
+
 def test_not_converged_returns_a_solution():
     c = small_ehl()
     c.set("solver.max_iterations", 1)

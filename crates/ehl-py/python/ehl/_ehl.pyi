@@ -101,6 +101,12 @@ class Solution:
     def density(self) -> Optional[F64]:
         """Density (kg/m^3), (ny, nx); None for a dry contact."""
     @property
+    def temperature(self) -> Optional[Dict[str, Any]]:
+        """Thermal runs (``[thermal]``): temperatures in K, ``mid_film``, ``max_film``,
+        ``surface_1``, ``surface_2`` as read-only (ny, nx) views (NaN where the film was not
+        solved), ``film_section`` (nz, nx, K) and ``section_z`` (nz, nx, m) across the film along
+        the centre grid line at ``section_y`` (m), and ``inlet`` (K); None when isothermal."""
+    @property
     def timeline(self) -> Optional[Dict[str, npt.NDArray[Any]]]:
         """Transient runs: the columns of ``timeline.csv`` (``step``, ``time_s``, ``x_p_m``,
         ``max_pressure_pa``, ``min_film_m``, ``central_film_m``, ``friction_coefficient``
