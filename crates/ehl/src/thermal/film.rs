@@ -344,7 +344,8 @@ pub struct ShearThinningProfile {
 }
 
 /// Solve a small dense system in place (Gaussian elimination with partial pivoting); false if
-/// singular.
+/// singular. Not `crate::linalg::dense::DenseLu`: that one keeps its factors in single
+/// precision (a preconditioner), too coarse for a Newton iteration to 1e-10 on nz <= 33 points.
 fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     for c in 0..n {
         let p = (c..n)
