@@ -36,6 +36,11 @@ pub const FIGURES: &[&str] = &[
     "max_pressure_over_travel_pa",
     "min_film_over_travel_m",
     "friction_coefficient_mean_over_travel",
+    // thermal runs
+    "max_film_temperature_k",
+    "mean_film_temperature_k",
+    "flash_temperature_k",
+    "heat_generated_w",
 ];
 
 /// One `--vary KEY=SPEC`.
