@@ -123,7 +123,8 @@ pub struct Summary {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub life_ratio: Option<f64>,
     /// transient runs with `[stress]`: x_p (m) of the step whose stress is reported (the kept
-    /// frame with the highest pressure)
+    /// frame with the highest pressure; with `[fatigue]`, the kept frame of largest fatigue
+    /// integral)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress_at_xp_m: Option<f64>,
     /// `[stress]`: the figures of each chosen body
