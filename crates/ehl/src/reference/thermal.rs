@@ -396,14 +396,23 @@ mod tests {
         let mut rem = vec![];
         for f in [1e-2, 1e-3, 1e-4] {
             let (g, tm) = local_poiseuille(f);
-            let (rg, rt) = ((g - (1.0 - 3.0 * f / 7.0)) / (f * f), (tm - 0.75 * f) / (f * f));
+            let (rg, rt) = (
+                (g - (1.0 - 3.0 * f / 7.0)) / (f * f),
+                (tm - 0.75 * f) / (f * f),
+            );
             assert!(rg.abs() < 1.0 && rt.abs() < 1.0, "F {f}: {rg} {rt}");
             rem.push((rg, rt));
         }
         // O(F^2): the scaled remainders of 1e-3 and 1e-4 agree within 1 % (and 10 % with 1e-2)
         let (a, b, c) = (rem[0], rem[1], rem[2]);
-        assert!((b.0 / c.0 - 1.0).abs() < 0.01 && (a.0 / c.0 - 1.0).abs() < 0.1, "{rem:?}");
-        assert!((b.1 / c.1 - 1.0).abs() < 0.01 && (a.1 / c.1 - 1.0).abs() < 0.1, "{rem:?}");
+        assert!(
+            (b.0 / c.0 - 1.0).abs() < 0.01 && (a.0 / c.0 - 1.0).abs() < 0.1,
+            "{rem:?}"
+        );
+        assert!(
+            (b.1 / c.1 - 1.0).abs() < 0.01 && (a.1 / c.1 - 1.0).abs() < 0.1,
+            "{rem:?}"
+        );
         assert_eq!(local_poiseuille(0.0), (1.0, 0.0));
         for (f, want) in [(0.2, 0.921598), (1.0, 0.706949), (3.0, 0.457206)] {
             let g = local_poiseuille(f).0;
@@ -433,7 +442,10 @@ mod tests {
         ] {
             let h = grubin_film(w, u, g, 0.0, None);
             let want = 1.95 * (g * u).powf(8.0 / 11.0) * w.powf(-1.0 / 11.0);
-            assert!((h / want - 1.0).abs() < 0.02, "W {w} U {u} G {g}: {h} vs {want}");
+            assert!(
+                (h / want - 1.0).abs() < 0.02,
+                "W {w} U {u} G {g}: {h} vs {want}"
+            );
         }
     }
 
@@ -463,7 +475,10 @@ mod tests {
             let l = thermal_loading(0.04, 0.03, ue, 0.14);
             let a = grubin_thermal_ratio(1.3e-4, u, 3500.0, l, None);
             let b = grubin_thermal_ratio(1.3e-4, u, 3500.0, l, Some(-2.0));
-            assert!((a - full).abs() < 1e-3 && (b - heated_2b).abs() < 1e-3, "L {l}: {a} {b}");
+            assert!(
+                (a - full).abs() < 1e-3 && (b - heated_2b).abs() < 1e-3,
+                "L {l}: {a} {b}"
+            );
         }
     }
 }
