@@ -196,7 +196,8 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 /// A study (not in the suite) finds:
 /// * our local flow factor is within 1 % of the exact local thermal Poiseuille solution;
 /// * the fits' thermal Reynolds factor overstates it by ~50 %;
-/// * a Grubin inlet with the exact factor gives half of Murch-Wilson's reduction.
+/// * a Grubin inlet with the exact factor gives half of Murch-Wilson's reduction (now
+///   `reference::thermal::grubin_thermal_ratio`: `film_reduction_against_a_thermal_grubin_inlet`).
 ///
 /// The bounds below record the present state: 0.45..1.1 of the fits' mean. A closer agreement
 /// keeps the test passing; losing half of the present reduction fails it.
@@ -214,6 +215,54 @@ fn film_reduction_against_the_inlet_heating_fits() {
             (0.45..1.1).contains(&ratio),
             "L {l:.3}: reduction {:.4} is {ratio:.2} of the fits' mean (MW {mw:.4}, Gupta {gu:.4})",
             1.0 - r
+        );
+    }
+}
+
+/// Our solver under the Grubin reference's own assumptions (no thermal expansion, bodies at T0
+/// through conductivities 1e9 W/(m K); pure rolling, Newtonian, Barus, beta = 0.03 1/K, 256
+/// cells) against `reference::thermal::grubin_thermal_ratio` heated for x > -2b (a Grubin inlet,
+/// rigid Hertzian gap, exact local conduction-only Poiseuille factor), at L = 0.134 and 0.552.
+/// Measured: ours 0.9805 and 0.9307, the reference 0.9781 and 0.9264 (heated everywhere:
+/// 0.9754 and 0.9117). What parts them: convection, which carries the far inlet's (x < -2b)
+/// heat downstream only weakly (film Peclet number ~100) and which the local column lacks
+/// altogether (the heated-everywhere Grubin is the thinner by 1.7 % at L = 0.552), and Grubin's
+/// idealisation (rigid Hertzian gap, infinite pressure at -b, incompressible). The tolerance,
+/// 0.25 of the reference's reduction 1 - h_t/h_i (0.0055 and 0.018 in the ratio), covers the
+/// measured 0.0024 and 0.0043 (our reduction 11 % and 6 % smaller than the reference's) and
+/// fails if our reduction moves by a quarter from that of the local model.
+#[test]
+fn film_reduction_against_a_thermal_grubin_inlet() {
+    for u in [3.6e-11, 7.3e-11] {
+        let sets = [
+            NEWTONIAN.to_string(),
+            "motion.slide_to_roll=0.0".to_string(),
+            format!("motion.dimensionless_speed={u:e}"),
+            "lubricant.viscosity_model=\"barus\"".to_string(),
+            "body1.conductivity=1e9".to_string(),
+            "body2.conductivity=1e9".to_string(),
+        ];
+        let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
+        let iso = solve(&case("", &sets));
+        let c = case(
+            "[thermal]\nviscosity_beta = 0.03\nthermal_expansion = 0.0\n",
+            &sets,
+        );
+        let th = solve(&c);
+        assert!(
+            iso.summary.converged && th.summary.converged,
+            "{}",
+            th.summary.termination
+        );
+        let ours = th.summary.central_film_m.unwrap() / iso.summary.central_film_m.unwrap();
+        let ue = c.motion.as_ref().unwrap().entrainment_speed;
+        let l = ehl::reference::thermal::thermal_loading(0.04, 0.03, ue, 0.14);
+        let grubin =
+            ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, u, 3500.0, l, Some(-2.0));
+        println!("L {l:.4}: ours {ours:.4}, Grubin heated for x > -2b {grubin:.4}");
+        assert!(
+            (ours - grubin).abs() < 0.25 * (1.0 - grubin),
+            "L {l:.3}: ours {ours:.4} vs Grubin (x > -2b) {grubin:.4}"
         );
     }
 }
