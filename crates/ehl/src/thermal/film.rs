@@ -730,8 +730,10 @@ mod tests {
             ShearOptions::default(),
         )
         .unwrap();
+        // Newton with the exact (semi-analytic) Jacobian converges quadratically: a wrong
+        // Jacobian still reaches the tolerance through the line search, but in many more steps
         assert!(
-            s.converged && s.iterations > 2,
+            s.converged && s.iterations > 2 && s.iterations <= 12,
             "{}: {}",
             s.iterations,
             s.residual
