@@ -33,8 +33,11 @@ pub struct ThermalParams {
     pub tolerance_k: f64,
     /// most outer iterations
     pub max_outer: usize,
-    /// under-relaxation of the Reynolds factors (1: none)
+    /// under-relaxation of the Reynolds factors from the second outer iteration on (1: none);
+    /// halved, down to `min_relaxation`, whenever the film-temperature change grows
     pub relaxation: f64,
+    /// the smallest relaxation the halving reaches
+    pub min_relaxation: f64,
 }
 
 impl Default for ThermalParams {
@@ -42,7 +45,8 @@ impl Default for ThermalParams {
         ThermalParams {
             tolerance_k: 0.05,
             max_outer: 80,
-            relaxation: 1.0,
+            relaxation: 0.5,
+            min_relaxation: 0.125,
         }
     }
 }
@@ -132,6 +136,7 @@ fn run(
     let (mut p_si, mut h_si) = (vec![0.0; n], vec![0.0; n]);
     let (mut flow, mut couette) = (vec![1.0; n], vec![1.0; n]);
     let mut failure = None;
+    let mut w = thermal.relaxation;
     while outer < thermal.max_outer {
         if crate::run::cancel::requested() {
             failure = Some(Termination::Cancelled);
@@ -167,6 +172,11 @@ fn run(
         } else {
             0.99
         };
+        // a growing change (both finite: an infinite one is a cell solved for the first time)
+        // is the coupling overshooting: damp it
+        if prev.is_finite() && change.is_finite() && change > prev {
+            w = (0.5 * w).max(thermal.min_relaxation.min(thermal.relaxation));
+        }
         estimate = change * rho / (1.0 - rho);
         prev = change;
         let settled = estimate <= thermal.tolerance_k;
@@ -174,7 +184,7 @@ fn run(
             break;
         }
         contact.reynolds_factors(&p_si, &sys.active, &mut flow, &mut couette);
-        let w = if outer == 1 { 1.0 } else { thermal.relaxation };
+        let w = if outer == 1 { 1.0 } else { w };
         for k in 0..n {
             factors.flow[k] += w * (flow[k] - factors.flow[k]);
             factors.couette[k] += w * (couette[k] - factors.couette[k]);

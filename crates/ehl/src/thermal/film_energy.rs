@@ -230,7 +230,8 @@ pub struct LineOptions {
     pub tol: f64,
     /// at most this many fixed-point iterations
     pub max_iter: usize,
-    /// relaxation omega in (0, 1]: T <- T + omega (T_solved - T)
+    /// relaxation omega in (0, 1]: T <- T + omega (T_solved - T); halved (down to a quarter
+    /// of it) whenever the change grows from one iteration to the next
     pub relaxation: f64,
     /// the shear-thinning iteration per column
     pub shear: ShearOptions,
@@ -662,6 +663,11 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
         .fold(line.t_in, |m, &v| m.min(v))
         - FLOOR_MARGIN;
     let mut iterations = 0;
+    // the relaxation in use and the last change: a change that grows halves the relaxation
+    // (a thick inlet film with reverse flow and a temperature-sensitive oil, thesis Table 3.7
+    // line in pure rolling at L = 2.2, settled into a limit cycle of +-4 K at 0.4, and converged
+    // at 0.2-0.3)
+    let (mut omega, mut last) = (opts.relaxation, f64::INFINITY);
     loop {
         iterations += 1;
         let (coef, profiles, shear_unconverged) = line_coefficients(rule, laws, line, &t, opts)?;
@@ -686,8 +692,12 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
                 shear_unconverged,
             });
         }
+        if change > last {
+            omega = (0.5 * omega).max(0.25 * opts.relaxation);
+        }
+        last = change;
         for (a, b) in t.iter_mut().zip(&solved) {
-            *a = (*a + opts.relaxation * (b - *a)).max(floor);
+            *a = (*a + omega * (b - *a)).max(floor);
         }
     }
 }
