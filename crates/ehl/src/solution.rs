@@ -162,9 +162,23 @@ pub struct Summary {
     /// `[thermal]`: Blok's estimate of the same from the friction coefficient (K), for comparison
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flash_temperature_blok_k: Option<f64>,
-    /// `[thermal]`: outer (Reynolds - temperature) fixed-point iterations
+    /// `[thermal]`: outer (Reynolds - temperature) fixed-point iterations (a transient run: of
+    /// its steady start)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal_iterations: Option<usize>,
+    /// `[thermal]`, transient runs: the largest film temperature over the travel (K) and the
+    /// x_p (m) of its step
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_film_temperature_over_travel_k: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_film_temperature_over_travel_at_xp_m: Option<f64>,
+    /// `[thermal]`, transient runs: the largest surface temperature over the travel, body 1 and
+    /// body 2 (K)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_surface_temperature_over_travel_k: Option<[f64; 2]>,
+    /// `[thermal]`, transient runs: the largest |energy balance error| over the steps
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_energy_balance_error: Option<f64>,
     /// transient runs with `[stress]`: the maxima of each chosen body's passage maps
     /// (`stress_passage.npz`), positions in that body's material frame
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -309,6 +323,27 @@ pub struct StepRecord {
     pub mass_storage_kg_s: f64,
     /// wall time of this step (s)
     pub wall_time_s: f64,
+    /// a thermal run's figures of this step (extra `timeline.csv` columns)
+    #[serde(flatten)]
+    pub thermal: Option<StepThermalRecord>,
+}
+
+/// The thermal columns of a `timeline.csv` row ([`crate::output::transient::THERMAL_COLUMNS`]).
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct StepThermalRecord {
+    /// largest film temperature (K)
+    pub max_film_temperature_k: f64,
+    /// largest surface temperature of body 1 and body 2 (K)
+    pub max_surface_temperature_1_k: f64,
+    pub max_surface_temperature_2_k: f64,
+    /// heat generated in the film (W; per metre on a line)
+    pub heat_generated_w: f64,
+    /// rate of change of the film's enthalpy (W; per metre on a line)
+    pub heat_stored_w: f64,
+    /// (generated - to bodies - convected - stored) / generated
+    pub energy_balance_error: f64,
+    /// Reynolds - temperature passes of the step
+    pub thermal_passes: usize,
 }
 
 /// The fields of one kept time step (row-major `ny * nx`, SI).

@@ -339,3 +339,147 @@ fn finite_roller_and_ball_run_thermally() {
         assert!(th.temperature.is_some());
     }
 }
+
+// ------------------------------------------------------------------ transient thermal runs
+
+const GROOVE: &str = include_str!("../../../examples/ehl_transient_line_groove.toml");
+
+/// The thermal table of the examples (thermal.md's typical mineral oil).
+const OIL: &str = "[thermal]\ninlet_temperature = 313.0\nviscosity_temperature = 1.1\nthermal_expansion = 6.5e-4\nconductivity = 0.14\nheat_capacity = 2000.0\n";
+
+/// The groove example (thesis Table 3.6 line, a 0.38 mm x 0.25 um groove on body 1) with
+/// `extra` appended, on 128 cells, the groove travelling from -0.6 to +0.6 mm in 60 steps
+/// (one cell per step, the step the issue asks for).
+fn groove_case(extra: &str, sets: &[&str]) -> Case {
+    let text = format!("{GROOVE}\n{extra}");
+    let mut all: Vec<String> = vec![
+        "grid.nx=128".into(),
+        "motion.travel={ from = -0.6e-3, to = 0.6e-3, steps = 60 }".into(),
+        "output.snapshots=[]".into(),
+    ];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    parse_str(&text, "groove.toml", &all).unwrap()
+}
+
+fn timeline(s: &Solution) -> &[ehl::solution::StepRecord] {
+    &s.transient.as_ref().expect("a transient run").timeline
+}
+
+/// The isothermal limit of a transient run: with an oil and bodies that conduct heat away
+/// almost perfectly (as `a_perfectly_conducting_oil_gives_the_isothermal_solution`) and a
+/// Newtonian oil, the thermal groove passage at SRR 0.3 must follow the isothermal one step by
+/// step: the factors are 1 to round-off, so the squeeze term with the thermal density, the
+/// film's time derivatives and the per-step passes must leave pressure and film alone.
+/// Tolerances as in the steady test: 1e-4 on the films (the Newton tolerance), 1e-3 on the
+/// friction (two quadratures of the same Newtonian stress).
+#[test]
+fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
+    let sets = [NEWTONIAN, "motion.slide_to_roll=0.3"];
+    let iso = solve(&groove_case("", &sets));
+    let cool = "[thermal]\nconductivity = 1e6\n";
+    let th = solve(&groove_case(
+        cool,
+        &[
+            NEWTONIAN,
+            "motion.slide_to_roll=0.3",
+            "body1.conductivity=1e10",
+            "body2.conductivity=1e10",
+        ],
+    ));
+    assert!(iso.summary.converged, "{}", iso.summary.termination);
+    assert!(th.summary.converged, "{}", th.summary.termination);
+    let (a, b) = (timeline(&iso), timeline(&th));
+    assert_eq!(a.len(), b.len());
+    for (i, t) in a.iter().zip(b) {
+        let tt = t.thermal.expect("thermal columns");
+        assert!(tt.max_film_temperature_k - 313.0 < 1e-2, "step {}: {tt:?}", t.step);
+        for (x, y, what) in [
+            (i.central_film_m, t.central_film_m, "central film"),
+            (i.min_film_m, t.min_film_m, "minimum film"),
+            (i.max_pressure_pa, t.max_pressure_pa, "max pressure"),
+        ] {
+            assert!(
+                (y / x - 1.0).abs() < 1e-4,
+                "step {}: {what} thermal {y} vs isothermal {x}",
+                t.step
+            );
+        }
+        let (fi, ft) = (i.friction_coefficient.unwrap(), t.friction_coefficient.unwrap());
+        assert!(
+            (ft / fi - 1.0).abs() < 1e-3,
+            "step {}: friction thermal {ft} vs isothermal {fi}",
+            t.step
+        );
+    }
+}
+
+/// Without features the thermal transient must stay on its steady start: every step's film,
+/// friction and film temperature equal step 0's. The time terms (the film's h rho c dT/dt and
+/// d(h rho)/dt, the squeeze term with the thermal density at both levels) vanish only if they
+/// are consistent with the steady equations. Tolerances: the per-step fixed point stops at a
+/// change of 0.05 K (`ThermalParams::tolerance_k`), so the film temperature is held to 0.1 K;
+/// 0.1 K moves the viscosity by ~0.3 % (Roelands S0 = 1.1 at 313 K) and the film, set in the
+/// inlet, by a fraction of that: 1e-3 on the films, 3e-3 on the friction.
+#[test]
+fn a_smooth_thermal_transient_stays_on_its_steady_start() {
+    let sets = [
+        "motion.slide_to_roll=0.3",
+        "motion.travel={ duration = 2e-5, steps = 10 }",
+        "grid.nx=128",
+    ];
+    let c = parse_str(THERMAL, "ehl_thermal_line.toml", &sets.map(String::from)).unwrap();
+    let s = solve(&c);
+    assert!(s.summary.converged, "{}", s.summary.termination);
+    let t = timeline(&s);
+    let r = &t[0];
+    let r0 = r.thermal.unwrap();
+    for k in &t[1..] {
+        let th = k.thermal.unwrap();
+        assert!(
+            (th.max_film_temperature_k - r0.max_film_temperature_k).abs() < 0.1,
+            "step {}: {} K vs {} K",
+            k.step,
+            th.max_film_temperature_k,
+            r0.max_film_temperature_k
+        );
+        assert!((k.central_film_m / r.central_film_m - 1.0).abs() < 1e-3, "step {}", k.step);
+        assert!((k.min_film_m / r.min_film_m - 1.0).abs() < 1e-3, "step {}", k.step);
+        let (f, f0) = (k.friction_coefficient.unwrap(), r.friction_coefficient.unwrap());
+        assert!((f / f0 - 1.0).abs() < 3e-3, "step {}: f {f} vs {f0}", k.step);
+        assert!(th.energy_balance_error.abs() < 1e-2, "step {}", k.step);
+    }
+}
+
+/// The groove passing through the thermal line at SRR 0.3 (Carreau, the example's oil):
+/// * every step converges, and its energy balance (generated = into the bodies + convected +
+///   stored in the film) closes within 1 % (issue 13; measured <= 0.2 % on 256 cells);
+/// * the thermal friction is below the isothermal one at every step (0.3 is past the thermal
+///   curve's peak: the steady thermal f is 0.31 of the isothermal at this SRR);
+/// * the film's enthalpy changes while the groove is in the contact (`heat_stored_w` non-zero)
+///   and the film temperature moves with it.
+#[test]
+fn a_groove_passes_through_the_thermal_line() {
+    let sets = ["motion.slide_to_roll=0.3"];
+    let th = solve(&groove_case(OIL, &sets));
+    let iso = solve(&groove_case("", &sets));
+    assert!(th.summary.converged, "{}", th.summary.termination);
+    let (a, b) = (timeline(&iso), timeline(&th));
+    let mut stored = 0.0f64;
+    let (mut tmin, mut tmax) = (f64::INFINITY, 0.0f64);
+    for (i, t) in a.iter().zip(b) {
+        let tt = t.thermal.unwrap();
+        assert!(t.converged, "step {}", t.step);
+        assert!(tt.energy_balance_error.abs() < 1e-2, "step {}: {tt:?}", t.step);
+        let (fi, ft) = (i.friction_coefficient.unwrap(), t.friction_coefficient.unwrap());
+        assert!(ft < fi, "step {}: thermal f {ft} vs isothermal {fi}", t.step);
+        stored = stored.max(tt.heat_stored_w.abs() / tt.heat_generated_w);
+        tmin = tmin.min(tt.max_film_temperature_k);
+        tmax = tmax.max(tt.max_film_temperature_k);
+    }
+    eprintln!("groove: stored/generated {stored:.3e}, film T {tmin:.2}..{tmax:.2} K, worst balance {:.2e}", th.summary.max_energy_balance_error.unwrap());
+    assert!(stored > 1e-3, "largest stored / generated {stored}");
+    assert!(tmax - tmin > 1.0, "film temperature {tmin}..{tmax} K");
+    let m = &th.summary;
+    assert!(m.max_film_temperature_over_travel_k.unwrap() >= tmax - 1e-9);
+    assert!(m.max_energy_balance_error.unwrap() < 1e-2);
+}

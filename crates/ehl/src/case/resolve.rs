@@ -1962,7 +1962,6 @@ fn thermal(
     top: &Sec,
     lub: &mut Lubricant,
     tables: RheologyTables,
-    transient: bool,
 ) -> R<Option<ThermalSpec>> {
     let Some(t) = sub(top, "thermal", "the temperature in the film and the bodies")? else {
         if !tables.is_empty() {
@@ -1991,12 +1990,6 @@ fn thermal(
         path: "thermal",
         table: t,
     };
-    if transient {
-        return Err(s.err(
-            "inlet_temperature",
-            "a thermal transient run (motion.travel with [thermal]) is not implemented yet: solve the thermal case steady (leave motion.travel out), or the transient one isothermal (leave [thermal] out)",
-        ));
-    }
     let t0 = s.positive("inlet_temperature", "K")?.unwrap_or(313.0);
     if t0 <= 138.0 + 1.0 {
         return Err(s.err(
@@ -2143,7 +2136,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let travel = motion.as_ref().and_then(|m| m.travel);
     let (lubricant, thermal) = match lubricant {
         Some((mut lub, tables)) => {
-            let th = thermal(&top, &mut lub, tables, travel.is_some())?;
+            let th = thermal(&top, &mut lub, tables)?;
             (Some(lub), th)
         }
         None => {

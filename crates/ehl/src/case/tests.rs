@@ -999,7 +999,7 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     );
     let (k, _) = err(&format!("{EHL}{bad}\n[thermal]\n"), &[]);
     assert_eq!(k, "lubricant.rheology.power_law_index");
-    // a dry contact has no film to heat; a thermal transient is not built yet
+    // a dry contact has no film to heat
     let (k, _) = err(&format!("{ROLLERS}\n[thermal]\n"), &[]);
     assert_eq!(k, "thermal");
 }

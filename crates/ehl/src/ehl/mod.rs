@@ -43,7 +43,7 @@ use system::{
     jacobian_product, DensePreconditioner, Linear, Physics, Preconditioner, State, System,
 };
 pub use transient::{
-    solve_transient, MassBalance, MovingSurface, StepResult, TimeScheme, TransientEnd,
+    solve_transient, solve_transient_thermal, MassBalance, MovingSurface, StepResult, StepThermal, TimeScheme, TransientEnd,
     TransientParams, TransientProblem, DENSE_MAX,
 };
 

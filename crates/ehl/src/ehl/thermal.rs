@@ -38,6 +38,8 @@ pub struct ThermalParams {
     pub relaxation: f64,
     /// the smallest relaxation the halving reaches
     pub min_relaxation: f64,
+    /// a transient run: most (temperature, Reynolds) passes per time step
+    pub max_step_passes: usize,
 }
 
 impl Default for ThermalParams {
@@ -47,6 +49,7 @@ impl Default for ThermalParams {
             max_outer: 80,
             relaxation: 0.5,
             min_relaxation: 0.125,
+            max_step_passes: 20,
         }
     }
 }

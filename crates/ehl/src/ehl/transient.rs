@@ -33,10 +33,12 @@
 //!   cells: 22.9 -> ~4 ms per step (Newton 3.0 -> 1.1, GMRES 226 -> ~6 per step); 2048 cells:
 //!   104 -> ~21 ms.
 
-use super::system::{Physics, Squeeze, State, System};
+use super::system::{Physics, Squeeze, State, System, ThermalFactors};
+use super::thermal::{solve_thermal, ThermalParams};
 use super::{
     better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
 };
+use crate::thermal::{HeatBalance, ThermalContact};
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;
 use crate::surface::Surface;
@@ -164,6 +166,40 @@ pub struct StepResult {
     pub mass: MassBalance,
     /// s
     pub wall_time: f64,
+    /// a thermal run's temperatures and heat at this step
+    pub thermal: Option<StepThermal>,
+}
+
+/// The thermal figures of one step of a thermal transient run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepThermal {
+    /// Reynolds - temperature passes of this step (step 0: the steady fixed point's outer
+    /// iterations)
+    pub passes: usize,
+    /// film-temperature change of the last pass (K)
+    pub change_k: f64,
+    /// largest film temperature (K)
+    pub max_film_temperature_k: f64,
+    /// largest surface temperature of body 1 and body 2 (K)
+    pub max_surface_temperature_k: [f64; 2],
+    /// heat balance (W; per metre on a line contact), `stored` the film's enthalpy change
+    pub heat: HeatBalance,
+    /// x-force of the film on body 2 from the thermal velocity profile (N; per metre on a line)
+    pub friction_force: f64,
+}
+
+impl StepThermal {
+    fn of(contact: &ThermalContact, passes: usize, change_k: f64) -> StepThermal {
+        let (film, surface) = contact.extremes();
+        StepThermal {
+            passes,
+            change_k,
+            max_film_temperature_k: film,
+            max_surface_temperature_k: surface,
+            heat: contact.heat(),
+            friction_force: contact.friction_force(),
+        }
+    }
 }
 
 /// How a transient run ended.
@@ -183,7 +219,32 @@ pub fn solve_transient(
     params: &TransientParams,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
-    rayon::scope(|_| run(problem, params, observer))
+    rayon::scope(|_| run(problem, params, None, observer))
+}
+
+/// [`solve_transient`] with the temperature (issue 13): the steady start is the thermal fixed
+/// point of [`super::thermal`]; each step then
+///
+/// 1. solves the Reynolds equation with the generalized Reynolds factors of the last
+///    temperatures (the squeeze term's rho H carries the Couette density rho* of the factors, at
+///    both time levels);
+/// 2. solves the film's energy equation with its time derivatives against the previous step
+///    (backward Euler, [`ThermalContact::begin_step`]; the bodies quasi-steady);
+/// 3. repeats 1-2 with the factors relaxed as in the steady fixed point until the film
+///    temperature changes by less than `thermal.tolerance_k` between two passes (at least two
+///    passes, at most `thermal.max_step_passes`); a step that does not settle is reported
+///    (`converged == false`, termination [`super::Termination::ThermalNotSettled`]).
+///
+/// `contact` keeps the last step's temperatures. Every [`StepResult`] carries its
+/// [`StepThermal`].
+pub fn solve_transient_thermal(
+    problem: &TransientProblem,
+    params: &TransientParams,
+    thermal: &ThermalParams,
+    contact: &mut ThermalContact,
+    observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
+) -> TransientEnd {
+    rayon::scope(|_| run(problem, params, Some((thermal, contact)), observer))
 }
 
 fn gap_at<'a>(problem: &'a TransientProblem, t: f64) -> GapWithFeatures<'a> {
@@ -201,6 +262,7 @@ fn gap_at<'a>(problem: &'a TransientProblem, t: f64) -> GapWithFeatures<'a> {
 fn run(
     problem: &TransientProblem,
     params: &TransientParams,
+    mut thermal: Option<(&ThermalParams, &mut ThermalContact)>,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
     let base = &problem.base;
@@ -215,14 +277,27 @@ fn run(
 
     // the steady start with the features at their t = 0 positions
     let gap0 = gap_at(problem, 0.0);
-    let steady = solve_steady_with_fallback(
-        &EhlProblem {
-            gap: &gap0,
-            ..*base
-        },
-        &params.newton,
-        &|| {},
-    );
+    let steady_problem = EhlProblem {
+        gap: &gap0,
+        ..*base
+    };
+    let mut steady = solve_steady_with_fallback(&steady_problem, &params.newton, &|| {});
+    // a thermal run starts from the steady thermal solution
+    let mut start_thermal = None;
+    if let Some((tp, contact)) = thermal.as_mut() {
+        if steady.converged {
+            let r = solve_thermal(
+                &steady_problem,
+                &params.newton,
+                tp,
+                &steady,
+                contact,
+                &mut |_, _| {},
+            );
+            start_thermal = Some(StepThermal::of(contact, r.outer_iterations, r.last_change_k));
+            steady = r.ehl;
+        }
+    }
     let lub = base.lubricant;
     let phys = Physics::new(
         lub.clone(),
@@ -270,7 +345,22 @@ fn run(
         operator_applications: steady.operator_applications,
         mass: balance(problem, &sys, &st),
         wall_time: clock.elapsed().as_secs_f64(),
+        thermal: start_thermal,
     };
+    // the thermal start's Reynolds factors, from its temperatures
+    let mut factors = ThermalFactors {
+        flow: vec![1.0; n],
+        couette: vec![1.0; n],
+    };
+    let (mut p_si, mut h_si) = (vec![0.0; n], vec![0.0; n]);
+    let mut fresh = factors.clone();
+    if let Some((_, contact)) = thermal.as_mut() {
+        if contact.solved() {
+            contact.reynolds_factors(&start.pressure, &sys.active, &mut factors.flow, &mut factors.couette);
+        }
+        sys.thermal = Some(factors.clone());
+        sys.eval(&mut st);
+    }
     if observer(&start).is_break() {
         return TransientEnd::Stopped { after_step: 0 };
     }
@@ -344,6 +434,76 @@ fn run(
                 end = e;
             }
         }
+        // the temperature of this step: passes of (temperature, factors, Newton) until the film
+        // temperature settles
+        let mut step_thermal = None;
+        if let Some((tp, contact)) = thermal.as_mut() {
+            let mut passes = 0;
+            let mut change = f64::INFINITY;
+            let mut prev = f64::INFINITY;
+            let mut w = tp.relaxation;
+            let mut failure = None;
+            while end.converged {
+                passes += 1;
+                for k in 0..n {
+                    p_si[k] = st.p[k] * ph;
+                    h_si[k] = if sys.active[k] {
+                        st.h[k] * hs
+                    } else {
+                        f64::INFINITY
+                    };
+                }
+                if passes == 1 {
+                    contact.begin_step(problem.dt);
+                }
+                match contact.update(&p_si, &h_si, &sys.active, Some((&factors.flow, &factors.couette))) {
+                    Ok(c) => change = c,
+                    Err(e) => {
+                        failure = Some(super::Termination::ThermalFailed(e.to_string()));
+                        break;
+                    }
+                }
+                // the first pass's change is the step's own (time), not the iteration's
+                if passes >= 2 && change <= tp.tolerance_k {
+                    break;
+                }
+                if passes >= tp.max_step_passes {
+                    failure = Some(super::Termination::ThermalNotSettled {
+                        outer: passes,
+                        change_k: change,
+                    });
+                    break;
+                }
+                if passes >= 3 && change > prev {
+                    w = (0.5 * w).max(tp.min_relaxation.min(tp.relaxation));
+                }
+                if passes >= 2 {
+                    prev = change;
+                }
+                contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
+                let wk = if passes == 1 { 1.0 } else { w };
+                for k in 0..n {
+                    factors.flow[k] += wk * (fresh.flow[k] - factors.flow[k]);
+                    factors.couette[k] += wk * (fresh.couette[k] - factors.couette[k]);
+                }
+                sys.thermal = Some(factors.clone());
+                sys.eval(&mut st);
+                end = solve_from(
+                    &mut sys,
+                    &mut st,
+                    params.newton.tolerance,
+                    &params.newton,
+                    &mut stats,
+                );
+            }
+            if let Some(f) = failure {
+                end.converged = false;
+                end.reason = f;
+            }
+            if contact.solved() {
+                step_thermal = Some(StepThermal::of(contact, passes, change));
+            }
+        }
         if !end.converged {
             failed.push(step);
         }
@@ -388,6 +548,7 @@ fn run(
             operator_applications: sys.applies - applies0,
             mass: balance(problem, &sys, &st),
             wall_time: t0.elapsed().as_secs_f64(),
+            thermal: step_thermal,
         };
         if observer(&res).is_break() {
             return TransientEnd::Stopped { after_step: step };

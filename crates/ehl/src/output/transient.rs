@@ -90,6 +90,18 @@ pub const TIMELINE_COLUMNS: [&str; 20] = [
     "wall_time_s",
 ];
 
+/// The columns a thermal run adds to `timeline.csv`, after [`TIMELINE_COLUMNS`] (interface.md:
+/// "transient timelines add `max_film_temperature_k`").
+pub const THERMAL_COLUMNS: [&str; 7] = [
+    "max_film_temperature_k",
+    "max_surface_temperature_1_k",
+    "max_surface_temperature_2_k",
+    "heat_generated_w",
+    "heat_stored_w",
+    "energy_balance_error",
+    "thermal_passes",
+];
+
 type DrawResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
 /// Writes every transient output of `solution` into `dir` (an existing folder: the temporary
@@ -157,6 +169,16 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
         if let Some(f) = r.friction_coefficient {
             figures.push(("friction_coefficient", f));
         }
+        if let Some(th) = &r.thermal {
+            figures.extend([
+                ("max_film_temperature_k", th.max_film_temperature_k),
+                ("max_surface_temperature_1_k", th.max_surface_temperature_1_k),
+                ("max_surface_temperature_2_k", th.max_surface_temperature_2_k),
+                ("heat_generated_w", th.heat_generated_w),
+                ("heat_stored_w", th.heat_stored_w),
+                ("energy_balance_error", th.energy_balance_error),
+            ]);
+        }
         if let Some((name, v)) = figures.into_iter().find(|(_, v)| !v.is_finite()) {
             return Err(format!(
                 "{TIMELINE_CSV}: step {}: `{name}` is {v}; refusing to write a non-finite value",
@@ -201,6 +223,12 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
 pub fn timeline_csv(t: &TransientRecord) -> String {
     let mut s = String::with_capacity(256 * (t.timeline.len() + 1));
     s.push_str(&TIMELINE_COLUMNS.join(","));
+    // a thermal run: its columns on every row (empty on a step without temperatures)
+    let thermal = t.timeline.iter().any(|r| r.thermal.is_some());
+    if thermal {
+        s.push(',');
+        s.push_str(&THERMAL_COLUMNS.join(","));
+    }
     s.push('\n');
     for r in &t.timeline {
         let friction = r
@@ -230,6 +258,28 @@ pub fn timeline_csv(t: &TransientRecord) -> String {
             r.mass_storage_kg_s,
             r.wall_time_s,
         );
+        if thermal {
+            s.pop();
+            match &r.thermal {
+                Some(th) => {
+                    let _ = writeln!(
+                        s,
+                        ",{:e},{:e},{:e},{:e},{:e},{:e},{}",
+                        th.max_film_temperature_k,
+                        th.max_surface_temperature_1_k,
+                        th.max_surface_temperature_2_k,
+                        th.heat_generated_w,
+                        th.heat_stored_w,
+                        th.energy_balance_error,
+                        th.thermal_passes
+                    );
+                }
+                None => s.push_str(&",".repeat(THERMAL_COLUMNS.len())),
+            }
+            if !s.ends_with('\n') {
+                s.push('\n');
+            }
+        }
     }
     s
 }

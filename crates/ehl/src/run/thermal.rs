@@ -29,13 +29,7 @@ pub fn solve(
     iso: &EhlResult,
     observer: &mut (dyn FnMut(usize, f64) + Send),
 ) -> Result<ThermalRun> {
-    let (Some(spec), Some(lub), Some(m)) = (&case.thermal, &case.lubricant, &case.motion) else {
-        return Err(Error::Solver(
-            "a thermal run needs [thermal], [lubricant] and [motion]".into(),
-        ));
-    };
-    let laws = ThermalLaws::new(lub, &spec.lubricant);
-    let mut contact = ThermalContact::new(problem.grid, laws, spec.bodies, m.u1(), m.u2())?;
+    let mut contact = contact_for(case, problem.grid)?;
     let result = solve_thermal(
         problem,
         params,
@@ -57,8 +51,38 @@ pub fn solve(
 /// The thermal figures of `run` into `summary`; `mu` the friction coefficient when known (for
 /// Blok's estimate, line contacts only).
 pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut Summary) {
-    let t = &run.fields;
-    let g = run.contact.grid();
+    summarise_contact(
+        case,
+        &run.contact,
+        &run.fields,
+        run.result.outer_iterations,
+        mu,
+        summary,
+    );
+}
+
+/// The contact for a thermal case's `[thermal]` table and motion on `grid`.
+pub fn contact_for(case: &Case, grid: crate::grid::Grid) -> Result<ThermalContact> {
+    let (Some(spec), Some(lub), Some(m)) = (&case.thermal, &case.lubricant, &case.motion) else {
+        return Err(Error::Solver(
+            "a thermal run needs [thermal], [lubricant] and [motion]".into(),
+        ));
+    };
+    let laws = ThermalLaws::new(lub, &spec.lubricant);
+    ThermalContact::new(grid, laws, spec.bodies, m.u1(), m.u2())
+}
+
+/// The thermal figures of `contact` (its last update) and its output `fields` into `summary`;
+/// `outer` the fixed point's outer iterations, `mu` as in [`summarise`].
+pub fn summarise_contact(
+    case: &Case,
+    contact: &ThermalContact,
+    t: &TemperatureFields,
+    outer: usize,
+    mu: Option<f64>,
+    summary: &mut Summary,
+) {
+    let g = contact.grid();
     let argmax = |v: &[f64]| {
         (0..v.len()).fold(0, |m, k| {
             if v[k].is_finite() && (!v[m].is_finite() || v[k] > v[m]) {
@@ -80,13 +104,13 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
     let s = [smax(&t.surface_1), smax(&t.surface_2)];
     summary.max_surface_temperature_k = Some(s);
     summary.flash_temperature_k = Some(s[0].max(s[1]) - t.inlet);
-    let heat = run.contact.heat();
+    let heat = contact.heat();
     summary.mean_film_temperature_k = Some(heat.mean_film_temperature);
     summary.heat_generated_w = Some(heat.generated);
     summary.heat_to_body_w = Some(heat.to_body);
     summary.heat_convected_w = Some(heat.convected);
     summary.energy_balance_error = Some(heat.balance_error());
-    summary.thermal_iterations = Some(run.result.outer_iterations);
+    summary.thermal_iterations = Some(outer);
     let line = !case.is_point();
     if let (Some(mu), Some(spec), Some(m), true) = (mu, &case.thermal, &case.motion, line) {
         // Blok for a line contact: w' the load per length, body 1's properties for both

@@ -12,14 +12,17 @@
 
 use super::{film_at, Progress};
 use crate::case::{Case, Travel};
+use crate::ehl::thermal::ThermalParams;
 use crate::ehl::{
-    solve_transient, EhlParams, EhlProblem, MovingSurface, StepResult, TimeScheme, TransientEnd,
-    TransientParams, TransientProblem,
+    solve_transient, solve_transient_thermal, EhlParams, EhlProblem, MovingSurface, StepResult,
+    TimeScheme, TransientEnd, TransientParams, TransientProblem,
 };
 use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
-use crate::solution::{Fields, Frame, Solution, StepRecord, Summary, TransientRecord};
+use crate::solution::{
+    Fields, Frame, Solution, StepRecord, StepThermalRecord, Summary, TransientRecord,
+};
 use crate::surface::Surface;
 use crate::{Error, Result};
 use std::ops::ControlFlow;
@@ -222,9 +225,23 @@ pub(super) fn solve(
     let mut first_failure: Option<(usize, String)> = None;
     let steps = kin.steps;
     let area = grid.cell_area();
-    let end = solve_transient(&problem, &params, &mut |s: &StepResult| {
+    // [thermal]: the temperature model, stepped with the pressure
+    let mut contact = match &case.thermal {
+        Some(_) => Some(super::thermal::contact_for(case, grid)?),
+        None => None,
+    };
+    let mut observer = |s: &StepResult| {
         let x_p = kin.x_p(s.time);
-        let friction = if s.converged {
+        let friction = if let (true, Some(th)) = (s.converged, &s.thermal) {
+            // the thermal shear of the film's own velocity profile (as a steady thermal run)
+            let mu = th.friction_force / ctx.load;
+            if mu.is_finite() {
+                Some(mu)
+            } else {
+                friction_failures += 1;
+                None
+            }
+        } else if s.converged {
             match crate::friction::friction(&crate::friction::FrictionInput {
                 grid: &grid,
                 pressure: &s.pressure,
@@ -295,6 +312,15 @@ pub(super) fn solve(
             side_leakage_kg_s: s.mass.side_leakage,
             mass_storage_kg_s: s.mass.storage,
             wall_time_s: s.wall_time,
+            thermal: s.thermal.map(|th| StepThermalRecord {
+                max_film_temperature_k: th.max_film_temperature_k,
+                max_surface_temperature_1_k: th.max_surface_temperature_k[0],
+                max_surface_temperature_2_k: th.max_surface_temperature_k[1],
+                heat_generated_w: th.heat.generated,
+                heat_stored_w: th.heat.stored,
+                energy_balance_error: th.heat.balance_error(),
+                thermal_passes: th.passes,
+            }),
         });
         if s.step.is_multiple_of(ctx.frames_every) || s.step == steps {
             record.frames.push(Frame {
@@ -334,7 +360,17 @@ pub(super) fn solve(
         );
         last = Some(s.clone());
         ControlFlow::Continue(())
-    });
+    };
+    let end = match contact.as_mut() {
+        Some(c) => solve_transient_thermal(
+            &problem,
+            &params,
+            &ThermalParams::default(),
+            c,
+            &mut observer,
+        ),
+        None => solve_transient(&problem, &params, &mut observer),
+    };
     let Some(last) = last else {
         return Err(Error::Solver("the transient run produced no step".into()));
     };
@@ -427,9 +463,51 @@ pub(super) fn solve(
         super::stress::summarise_passage(pr, &mut summary);
     }
     record.passage = passage;
+    // [thermal]: the last step's temperatures and heat, and the extremes over the travel
+    let mut temperature = None;
+    if let Some(c) = contact.as_ref().filter(|c| c.solved()) {
+        let fields = c.fields(&last.film);
+        let outer = record
+            .timeline
+            .first()
+            .and_then(|r| r.thermal)
+            .map_or(0, |t| t.thermal_passes);
+        super::thermal::summarise_contact(
+            case,
+            c,
+            &fields,
+            outer,
+            summary.friction_coefficient,
+            &mut summary,
+        );
+        let rows: Vec<(f64, StepThermalRecord)> = record
+            .timeline
+            .iter()
+            .filter(|r| r.converged || !any_converged)
+            .filter_map(|r| r.thermal.map(|t| (r.x_p_m, t)))
+            .collect();
+        if let Some((x, t)) = rows
+            .iter()
+            .max_by(|a, b| a.1.max_film_temperature_k.total_cmp(&b.1.max_film_temperature_k))
+        {
+            summary.max_film_temperature_over_travel_k = Some(t.max_film_temperature_k);
+            summary.max_film_temperature_over_travel_at_xp_m = Some(*x);
+        }
+        if !rows.is_empty() {
+            let top = |f: fn(&StepThermalRecord) -> f64| {
+                rows.iter().map(|(_, t)| f(t)).fold(f64::NEG_INFINITY, f64::max)
+            };
+            summary.max_surface_temperature_over_travel_k = Some([
+                top(|t| t.max_surface_temperature_1_k),
+                top(|t| t.max_surface_temperature_2_k),
+            ]);
+            summary.max_energy_balance_error = Some(top(|t| t.energy_balance_error.abs()));
+        }
+        temperature = Some(fields);
+    }
     Ok(Solution {
         stress: None,
-        temperature: None,
+        temperature,
         grid,
         fields: fields_of(&last),
         summary,
