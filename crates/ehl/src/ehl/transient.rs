@@ -443,6 +443,7 @@ fn run(
             let mut prev = f64::INFINITY;
             let mut w = tp.relaxation;
             let mut failure = None;
+            let mut h_prev = vec![f64::NAN; n];
             while end.converged {
                 passes += 1;
                 for k in 0..n {
@@ -453,6 +454,8 @@ fn run(
                         f64::INFINITY
                     };
                 }
+                let film_change = super::thermal::film_change(&h_si, &h_prev);
+                h_prev.copy_from_slice(&h_si);
                 if passes == 1 {
                     contact.begin_step(problem.dt);
                 }
@@ -464,7 +467,7 @@ fn run(
                     }
                 }
                 // the first pass's change is the step's own (time), not the iteration's
-                if passes >= 2 && change <= tp.tolerance_k {
+                if passes >= 2 && change <= tp.tolerance_k && film_change <= tp.film_tolerance {
                     break;
                 }
                 if passes >= tp.max_step_passes {

@@ -832,6 +832,39 @@ pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Resu
             }],
         });
     }
+    // a thermal run: the temperature rises above the inlet
+    if let (Some(spec), true) = (&case.thermal, rows.iter().any(|r| r.thermal.is_some())) {
+        let t0 = spec.lubricant.inlet_temperature;
+        type Of = fn(&crate::solution::StepThermalRecord) -> f64;
+        let series: [(&str, RGBColor, Of); 3] = [
+            ("film, maximum across z", PRESSURE_COLOR, |t| t.max_film_temperature_k),
+            ("surface of body 1", FILM_COLOR, |t| t.max_surface_temperature_1_k),
+            ("surface of body 2", MIN_FILM_COLOR, |t| t.max_surface_temperature_2_k),
+        ];
+        let lines: Vec<Line> = series
+            .iter()
+            .map(|&(label, color, of)| Line {
+                label: format!("{label} (largest over the contact)"),
+                color,
+                pts: xs
+                    .iter()
+                    .zip(rows)
+                    .map(|(&x, r)| (x, r.thermal.as_ref().map_or(f64::NAN, |t| of(t) - t0)))
+                    .collect(),
+            })
+            .collect();
+        // room above the film's line for the legend (the surfaces' lines run along the bottom)
+        let top = lines
+            .iter()
+            .flat_map(|l| l.pts.iter().map(|p| p.1))
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max);
+        panels.push(Panel {
+            y_label: format!("temperature rise above {} K (K)", fmt_sig_or_zero(t0, 4)),
+            range: drawable_range(0.0, 1.8 * top),
+            lines,
+        });
+    }
     let bad: Vec<(f64, usize)> = rows
         .iter()
         .enumerate()
