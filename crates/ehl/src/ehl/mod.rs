@@ -196,9 +196,14 @@ pub enum Termination {
     },
     /// stopped from outside through [`crate::run::cancel`] (the result is thrown away)
     Cancelled,
-    /// thermal runs: every Newton solve converged, but the film temperature still changed by
-    /// `change_k` (K) over the last of `outer` fixed-point iterations
-    ThermalNotSettled { outer: usize, change_k: f64 },
+    /// thermal runs: every Newton solve converged, but over the last of `outer` fixed-point
+    /// iterations the film temperature still changed by `change_k` (K) or the film by
+    /// `film_change` of its thinnest value
+    ThermalNotSettled {
+        outer: usize,
+        change_k: f64,
+        film_change: f64,
+    },
     /// thermal runs: the temperature solve failed (why)
     ThermalFailed(String),
     /// the direct attempt failed and continuation in alpha stalled at `fraction` of alpha
@@ -223,9 +228,13 @@ impl std::fmt::Display for Termination {
             Termination::MaxIterations(n) => write!(f, "no convergence in {n} Newton steps"),
             Termination::SingularPreconditioner => write!(f, "singular preconditioner"),
             Termination::Cancelled => write!(f, "cancelled"),
-            Termination::ThermalNotSettled { outer, change_k } => write!(
+            Termination::ThermalNotSettled {
+                outer,
+                change_k,
+                film_change,
+            } => write!(
                 f,
-                "thermal fixed point not settled: the film temperature still changed by {change_k:.3} K after {outer} outer iterations"
+                "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K and the film by {film_change:.1e} of its thinnest"
             ),
             Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(

@@ -474,6 +474,7 @@ fn run(
                     failure = Some(super::Termination::ThermalNotSettled {
                         outer: passes,
                         change_k: change,
+                        film_change,
                     });
                     break;
                 }
