@@ -793,8 +793,9 @@ impl PySolution {
 
     /// Transient runs: `timeline.csv` as a dict of columns (NumPy arrays, one entry per step,
     /// step 0 the steady start): `step`, `time_s`, `x_p_m`, `max_pressure_pa`, `min_film_m`,
-    /// `central_film_m`, `friction_coefficient` (NaN where not computed), `converged`, ...
-    /// None for a steady run.
+    /// `central_film_m`, `friction_coefficient` (NaN where not computed), `converged`, ...;
+    /// thermal runs add the temperature columns (`max_film_temperature_k`, ...). None for a
+    /// steady run.
     #[getter]
     fn timeline<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         self.sol

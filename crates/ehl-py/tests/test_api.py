@@ -254,6 +254,24 @@ def test_transient_timeline_and_frames():
     assert "time steps" in repr(sol)
 
 
+def test_thermal_transient_timeline_has_temperatures():
+    c = ehl.Case.from_file(example("ehl_thermal_transient_groove.toml"))
+    c.set("grid.nx", 128)
+    c.set("output.snapshots", [])
+    c.set("motion.travel", {"from": -0.3e-3, "to": 0.0, "steps": 8})
+    sol = ehl.solve(c, progress=False)
+    assert sol.converged, sol.summary["termination"]
+    tl = sol.timeline
+    t = tl["max_film_temperature_k"]
+    assert t.shape == (9,) and np.all(t > 313.0)
+    assert np.all(np.abs(tl["energy_balance_error"]) < 1e-2)
+    assert tl["thermal_passes"].dtype == np.int64
+    # the summary's extreme over the travel is the timeline's
+    assert sol.summary["max_film_temperature_over_travel_k"] == pytest.approx(t.max(), rel=1e-15)
+    # the temperature maps are the last step's
+    assert sol.temperature["max_film"].shape == (1, 128)
+
+
 def test_progress_callback_sees_the_end():
     seen = []
     ehl.solve(small_ehl(), progress=lambda f, m: seen.append((f, m)))

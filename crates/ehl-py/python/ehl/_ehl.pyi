@@ -110,7 +110,10 @@ class Solution:
     def timeline(self) -> Optional[Dict[str, npt.NDArray[Any]]]:
         """Transient runs: the columns of ``timeline.csv`` (``step``, ``time_s``, ``x_p_m``,
         ``max_pressure_pa``, ``min_film_m``, ``central_film_m``, ``friction_coefficient``
-        (NaN where not computed), ``converged``, ...), one entry per step; else None."""
+        (NaN where not computed), ``converged``, ...; thermal runs add
+        ``max_film_temperature_k``, ``max_surface_temperature_1_k``,
+        ``max_surface_temperature_2_k`` (K), ``heat_generated_w``, ``heat_stored_w`` (W),
+        ``energy_balance_error`` and ``thermal_passes``), one entry per step; else None."""
     @property
     def frames(self) -> Optional[List[Dict[str, Any]]]:
         """Transient runs: the kept steps, dicts with ``step``, ``time_s``, ``x_p_m`` (m),
