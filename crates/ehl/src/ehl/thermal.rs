@@ -148,7 +148,7 @@ fn run(
     let mut prev = f64::INFINITY;
     let mut outer = 0;
     let (mut p_si, mut h_si) = (vec![0.0; n], vec![0.0; n]);
-    let (mut flow, mut couette) = (vec![1.0; n], vec![1.0; n]);
+    let mut fresh = factors.clone();
     let mut failure = None;
     let mut w = thermal.relaxation;
     let mut shrinking = 0;
@@ -161,14 +161,7 @@ fn run(
             break;
         }
         outer += 1;
-        for k in 0..n {
-            p_si[k] = st.p[k] * ph;
-            h_si[k] = if sys.active[k] {
-                st.h[k] * hs
-            } else {
-                f64::INFINITY
-            };
-        }
+        fields_si(&sys, &st, ph, hs, &mut p_si, &mut h_si);
         change = match contact.update(
             &p_si,
             &h_si,
@@ -214,12 +207,8 @@ fn run(
         if settled && end.as_ref().is_some_and(|e: &super::StageEnd| e.converged) {
             break;
         }
-        contact.reynolds_factors(&p_si, &sys.active, &mut flow, &mut couette);
         let w = if outer == 1 { 1.0 } else { w };
-        for k in 0..n {
-            factors.flow[k] += w * (flow[k] - factors.flow[k]);
-            factors.couette[k] += w * (couette[k] - factors.couette[k]);
-        }
+        relax_factors(contact, &p_si, &sys.active, &mut factors, &mut fresh, w);
         sys.thermal = Some(factors.clone());
         sys.eval(&mut st);
         let e = solve_from(&mut sys, &mut st, params.tolerance, params, &mut stats);
@@ -259,6 +248,36 @@ fn run(
         outer_iterations: outer,
         last_change_k: change,
         newton_steps,
+    }
+}
+
+/// The pressure (Pa) and film (m; infinite where there is no material) of the evaluated state
+/// `st` of `sys`, for the temperature model (`ph` the pressure scale, `hs` the film scale).
+pub(crate) fn fields_si(sys: &System, st: &State, ph: f64, hs: f64, p: &mut [f64], h: &mut [f64]) {
+    for k in 0..st.p.len() {
+        p[k] = st.p[k] * ph;
+        h[k] = if sys.active[k] {
+            st.h[k] * hs
+        } else {
+            f64::INFINITY
+        };
+    }
+}
+
+/// Moves `factors` the fraction `w` of the way to the Reynolds factors of `contact`'s present
+/// temperatures at the pressure `p` (Pa); `fresh` is scratch.
+pub(crate) fn relax_factors(
+    contact: &ThermalContact,
+    p: &[f64],
+    active: &[bool],
+    factors: &mut ThermalFactors,
+    fresh: &mut ThermalFactors,
+    w: f64,
+) {
+    contact.reynolds_factors(p, active, &mut fresh.flow, &mut fresh.couette);
+    for k in 0..factors.flow.len() {
+        factors.flow[k] += w * (fresh.flow[k] - factors.flow[k]);
+        factors.couette[k] += w * (fresh.couette[k] - factors.couette[k]);
     }
 }
 

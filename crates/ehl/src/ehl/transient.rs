@@ -34,7 +34,7 @@
 //!   104 -> ~21 ms.
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
-use super::thermal::{solve_thermal, ThermalParams};
+use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
     better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
 };
@@ -446,14 +446,7 @@ fn run(
             let mut h_prev = vec![f64::NAN; n];
             while end.converged {
                 passes += 1;
-                for k in 0..n {
-                    p_si[k] = st.p[k] * ph;
-                    h_si[k] = if sys.active[k] {
-                        st.h[k] * hs
-                    } else {
-                        f64::INFINITY
-                    };
-                }
+                fields_si(&sys, &st, ph, hs, &mut p_si, &mut h_si);
                 let film_change = super::thermal::film_change(&h_si, &h_prev);
                 h_prev.copy_from_slice(&h_si);
                 if passes == 1 {
@@ -484,12 +477,8 @@ fn run(
                 if passes >= 2 {
                     prev = change;
                 }
-                contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
                 let wk = if passes == 1 { 1.0 } else { w };
-                for k in 0..n {
-                    factors.flow[k] += wk * (fresh.flow[k] - factors.flow[k]);
-                    factors.couette[k] += wk * (fresh.couette[k] - factors.couette[k]);
-                }
+                relax_factors(contact, &p_si, &sys.active, &mut factors, &mut fresh, wk);
                 sys.thermal = Some(factors.clone());
                 sys.eval(&mut st);
                 end = solve_from(
