@@ -157,7 +157,10 @@ fn the_thermal_traction_curve_peaks_and_falls() {
     let mut thermal = Vec::new();
     let mut iso = Vec::new();
     for srr in [0.01, 0.1, 0.3, 1.0] {
-        let set = [format!("motion.slide_to_roll={srr}"), "grid.nx=256".to_string()];
+        let set = [
+            format!("motion.slide_to_roll={srr}"),
+            "grid.nx=256".to_string(),
+        ];
         let t = solve(&parse_str(THERMAL, "ehl_thermal_line.toml", &set).unwrap());
         assert!(t.summary.converged, "SRR {srr}: {}", t.summary.termination);
         let i = solve(&case("", &[set[0].as_str()]));
@@ -166,7 +169,12 @@ fn the_thermal_traction_curve_peaks_and_falls() {
         iso.push(i.summary.friction_coefficient.unwrap());
     }
     let low = thermal[0] / iso[0] - 1.0;
-    assert!(low.abs() < 0.02, "SRR 0.01: thermal {} vs isothermal {}", thermal[0], iso[0]);
+    assert!(
+        low.abs() < 0.02,
+        "SRR 0.01: thermal {} vs isothermal {}",
+        thermal[0],
+        iso[0]
+    );
     assert!(
         thermal[1] > thermal[2] && thermal[2] > thermal[3],
         "thermal f at SRR 0.1, 0.3, 1.0: {thermal:?}"
@@ -324,7 +332,11 @@ fn finite_roller_and_ball_run_thermally() {
         assert!(err.abs() < 1e-2, "{file}: energy balance {err}");
         let r = m.central_film_m.unwrap() / iso.summary.central_film_m.unwrap();
         let c = parse_str(&format!("{text}\n[thermal]\n"), file, &sets).unwrap();
-        let (lub, mo, tl) = (c.lubricant.unwrap(), c.motion.unwrap(), c.thermal.unwrap().lubricant);
+        let (lub, mo, tl) = (
+            c.lubricant.unwrap(),
+            c.motion.unwrap(),
+            c.thermal.unwrap().lubricant,
+        );
         let l = ehl::reference::thermal::thermal_loading(
             lub.viscosity,
             tl.viscosity_temperature.beta,
@@ -392,7 +404,11 @@ fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
     assert_eq!(a.len(), b.len());
     for (i, t) in a.iter().zip(b) {
         let tt = t.thermal.expect("thermal columns");
-        assert!(tt.max_film_temperature_k - 313.0 < 1e-2, "step {}: {tt:?}", t.step);
+        assert!(
+            tt.max_film_temperature_k - 313.0 < 1e-2,
+            "step {}: {tt:?}",
+            t.step
+        );
         for (x, y, what) in [
             (i.central_film_m, t.central_film_m, "central film"),
             (i.min_film_m, t.min_film_m, "minimum film"),
@@ -404,7 +420,10 @@ fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
                 t.step
             );
         }
-        let (fi, ft) = (i.friction_coefficient.unwrap(), t.friction_coefficient.unwrap());
+        let (fi, ft) = (
+            i.friction_coefficient.unwrap(),
+            t.friction_coefficient.unwrap(),
+        );
         assert!(
             (ft / fi - 1.0).abs() < 1e-3,
             "step {}: friction thermal {ft} vs isothermal {fi}",
@@ -442,10 +461,25 @@ fn a_smooth_thermal_transient_stays_on_its_steady_start() {
             th.max_film_temperature_k,
             r0.max_film_temperature_k
         );
-        assert!((k.central_film_m / r.central_film_m - 1.0).abs() < 1e-3, "step {}", k.step);
-        assert!((k.min_film_m / r.min_film_m - 1.0).abs() < 1e-3, "step {}", k.step);
-        let (f, f0) = (k.friction_coefficient.unwrap(), r.friction_coefficient.unwrap());
-        assert!((f / f0 - 1.0).abs() < 3e-3, "step {}: f {f} vs {f0}", k.step);
+        assert!(
+            (k.central_film_m / r.central_film_m - 1.0).abs() < 1e-3,
+            "step {}",
+            k.step
+        );
+        assert!(
+            (k.min_film_m / r.min_film_m - 1.0).abs() < 1e-3,
+            "step {}",
+            k.step
+        );
+        let (f, f0) = (
+            k.friction_coefficient.unwrap(),
+            r.friction_coefficient.unwrap(),
+        );
+        assert!(
+            (f / f0 - 1.0).abs() < 3e-3,
+            "step {}: f {f} vs {f0}",
+            k.step
+        );
         assert!(th.energy_balance_error.abs() < 1e-2, "step {}", k.step);
     }
 }
@@ -469,9 +503,20 @@ fn a_groove_passes_through_the_thermal_line() {
     for (i, t) in a.iter().zip(b) {
         let tt = t.thermal.unwrap();
         assert!(t.converged, "step {}", t.step);
-        assert!(tt.energy_balance_error.abs() < 1e-2, "step {}: {tt:?}", t.step);
-        let (fi, ft) = (i.friction_coefficient.unwrap(), t.friction_coefficient.unwrap());
-        assert!(ft < fi, "step {}: thermal f {ft} vs isothermal {fi}", t.step);
+        assert!(
+            tt.energy_balance_error.abs() < 1e-2,
+            "step {}: {tt:?}",
+            t.step
+        );
+        let (fi, ft) = (
+            i.friction_coefficient.unwrap(),
+            t.friction_coefficient.unwrap(),
+        );
+        assert!(
+            ft < fi,
+            "step {}: thermal f {ft} vs isothermal {fi}",
+            t.step
+        );
         stored = stored.max(tt.heat_stored_w.abs() / tt.heat_generated_w);
         tmin = tmin.min(tt.max_film_temperature_k);
         tmax = tmax.max(tt.max_film_temperature_k);

@@ -1958,11 +1958,7 @@ fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec
 /// conductivity, heat_capacity, density; steel by default). Rheology parameters given at several
 /// temperatures (`tables`) need it; with it, `lub.rheology` holds their values at the inlet
 /// temperature (what the isothermal parts of a run use).
-fn thermal(
-    top: &Sec,
-    lub: &mut Lubricant,
-    tables: RheologyTables,
-) -> R<Option<ThermalSpec>> {
+fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<ThermalSpec>> {
     let Some(t) = sub(top, "thermal", "the temperature in the film and the bodies")? else {
         if !tables.is_empty() {
             let k = [

@@ -38,10 +38,10 @@ use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
     better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
 };
-use crate::thermal::{HeatBalance, ThermalContact};
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;
 use crate::surface::Surface;
+use crate::thermal::{HeatBalance, ThermalContact};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -230,10 +230,15 @@ pub fn solve_transient(
 ///    both time levels);
 /// 2. solves the film's energy equation with its time derivatives against the previous step
 ///    (backward Euler, [`ThermalContact::begin_step`]; the bodies quasi-steady);
-/// 3. repeats 1-2 with the factors relaxed as in the steady fixed point until the film
-///    temperature changes by less than `thermal.tolerance_k` between two passes (at least two
-///    passes, at most `thermal.max_step_passes`); a step that does not settle is reported
-///    (`converged == false`, termination [`super::Termination::ThermalNotSettled`]).
+/// 3. repeats 1-2 with the factors relaxed as in the steady fixed point until, between two
+///    passes, the film temperature changes by less than `thermal.tolerance_k` (where the film
+///    is at most 5 times its thinnest) and the film by less than `thermal.film_tolerance` of
+///    its thinnest (at least two passes, at most `thermal.max_step_passes`); a step that does
+///    not settle is reported (`converged == false`, termination
+///    [`super::Termination::ThermalNotSettled`]).
+///
+/// The step's viscosity and density fields are the thermal ones (low-shear viscosity at the
+/// mid-film temperature, density averaged across the film), as in a steady thermal run.
 ///
 /// `contact` keeps the last step's temperatures. Every [`StepResult`] carries its
 /// [`StepThermal`].
@@ -294,7 +299,11 @@ fn run(
                 contact,
                 &mut |_, _| {},
             );
-            start_thermal = Some(StepThermal::of(contact, r.outer_iterations, r.last_change_k));
+            start_thermal = Some(StepThermal::of(
+                contact,
+                r.outer_iterations,
+                r.last_change_k,
+            ));
             steady = r.ehl;
         }
     }
@@ -356,7 +365,12 @@ fn run(
     let mut fresh = factors.clone();
     if let Some((_, contact)) = thermal.as_mut() {
         if contact.solved() {
-            contact.reynolds_factors(&start.pressure, &sys.active, &mut factors.flow, &mut factors.couette);
+            contact.reynolds_factors(
+                &start.pressure,
+                &sys.active,
+                &mut factors.flow,
+                &mut factors.couette,
+            );
         }
         sys.thermal = Some(factors.clone());
         sys.eval(&mut st);
@@ -452,7 +466,12 @@ fn run(
                 if passes == 1 {
                     contact.begin_step(problem.dt);
                 }
-                match contact.update(&p_si, &h_si, &sys.active, Some((&factors.flow, &factors.couette))) {
+                match contact.update(
+                    &p_si,
+                    &h_si,
+                    &sys.active,
+                    Some((&factors.flow, &factors.couette)),
+                ) {
                     Ok(c) => change = c,
                     Err(e) => {
                         failure = Some(super::Termination::ThermalFailed(e.to_string()));
@@ -500,7 +519,7 @@ fn run(
         if !end.converged {
             failed.push(step);
         }
-        let res = StepResult {
+        let mut res = StepResult {
             step,
             time: t,
             pressure: st.p.iter().map(|p| p * ph).collect(),
@@ -543,6 +562,14 @@ fn run(
             wall_time: t0.elapsed().as_secs_f64(),
             thermal: step_thermal,
         };
+        if let Some((_, contact)) = thermal.as_ref().filter(|(_, c)| c.solved()) {
+            contact.fill_laws(
+                &res.pressure,
+                &sys.active,
+                &mut res.viscosity,
+                &mut res.density,
+            );
+        }
         if observer(&res).is_break() {
             return TransientEnd::Stopped { after_step: step };
         }

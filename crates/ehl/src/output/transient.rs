@@ -172,8 +172,14 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
         if let Some(th) = &r.thermal {
             figures.extend([
                 ("max_film_temperature_k", th.max_film_temperature_k),
-                ("max_surface_temperature_1_k", th.max_surface_temperature_1_k),
-                ("max_surface_temperature_2_k", th.max_surface_temperature_2_k),
+                (
+                    "max_surface_temperature_1_k",
+                    th.max_surface_temperature_1_k,
+                ),
+                (
+                    "max_surface_temperature_2_k",
+                    th.max_surface_temperature_2_k,
+                ),
                 ("heat_generated_w", th.heat_generated_w),
                 ("heat_stored_w", th.heat_stored_w),
                 ("energy_balance_error", th.energy_balance_error),
@@ -837,9 +843,15 @@ pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Resu
         let t0 = spec.lubricant.inlet_temperature;
         type Of = fn(&crate::solution::StepThermalRecord) -> f64;
         let series: [(&str, RGBColor, Of); 3] = [
-            ("film, maximum across z", PRESSURE_COLOR, |t| t.max_film_temperature_k),
-            ("surface of body 1", FILM_COLOR, |t| t.max_surface_temperature_1_k),
-            ("surface of body 2", MIN_FILM_COLOR, |t| t.max_surface_temperature_2_k),
+            ("film, maximum across z", PRESSURE_COLOR, |t| {
+                t.max_film_temperature_k
+            }),
+            ("surface of body 1", FILM_COLOR, |t| {
+                t.max_surface_temperature_1_k
+            }),
+            ("surface of body 2", MIN_FILM_COLOR, |t| {
+                t.max_surface_temperature_2_k
+            }),
         ];
         let lines: Vec<Line> = series
             .iter()

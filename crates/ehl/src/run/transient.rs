@@ -486,16 +486,18 @@ pub(super) fn solve(
             .filter(|r| r.converged || !any_converged)
             .filter_map(|r| r.thermal.map(|t| (r.x_p_m, t)))
             .collect();
-        if let Some((x, t)) = rows
-            .iter()
-            .max_by(|a, b| a.1.max_film_temperature_k.total_cmp(&b.1.max_film_temperature_k))
-        {
+        if let Some((x, t)) = rows.iter().max_by(|a, b| {
+            a.1.max_film_temperature_k
+                .total_cmp(&b.1.max_film_temperature_k)
+        }) {
             summary.max_film_temperature_over_travel_k = Some(t.max_film_temperature_k);
             summary.max_film_temperature_over_travel_at_xp_m = Some(*x);
         }
         if !rows.is_empty() {
             let top = |f: fn(&StepThermalRecord) -> f64| {
-                rows.iter().map(|(_, t)| f(t)).fold(f64::NEG_INFINITY, f64::max)
+                rows.iter()
+                    .map(|(_, t)| f(t))
+                    .fold(f64::NEG_INFINITY, f64::max)
             };
             summary.max_surface_temperature_over_travel_k = Some([
                 top(|t| t.max_surface_temperature_1_k),

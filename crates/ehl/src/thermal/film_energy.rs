@@ -561,7 +561,11 @@ pub fn solve_line_linear(
             let comp = h * coef.compression[at];
             a.add(r, r, comp);
             b[r] += h * coef.heating[at] - comp * t_in;
-            if let Some(tr) = line.transient.as_ref().filter(|tr| tr.t_old[at].is_finite()) {
+            if let Some(tr) = line
+                .transient
+                .as_ref()
+                .filter(|tr| tr.t_old[at].is_finite())
+            {
                 // h rho c (T - T_old) / dt, in theta = T - T_in
                 let s = h * coef.density[at] * cp * tr.inv_dt;
                 a.add(r, r, s);
@@ -622,8 +626,7 @@ pub fn line_energy(
                     } else {
                         0.0
                     };
-                    w[k] * oil.heat_capacity
-                        * (heat + (col[k] - line.t_in) * coef.mass_storage[at])
+                    w[k] * oil.heat_capacity * (heat + (col[k] - line.t_in) * coef.mass_storage[at])
                 })
                 .sum();
         }
@@ -688,7 +691,11 @@ pub fn line_energy(
             }
             r += cp * jflux[at] * d1t - kf / h * d2t + h * coef.compression[at] * t[at]
                 - h * coef.heating[at];
-            if let Some(tr) = line.transient.as_ref().filter(|tr| tr.t_old[at].is_finite()) {
+            if let Some(tr) = line
+                .transient
+                .as_ref()
+                .filter(|tr| tr.t_old[at].is_finite())
+            {
                 r += h * coef.density[at] * cp * (t[at] - tr.t_old[at]) * tr.inv_dt;
             }
             if k == 0 {
@@ -1092,7 +1099,10 @@ mod tests {
         let stored: f64 = e.stored.iter().sum::<f64>() * dx;
         let generated: f64 = e.generated.iter().sum::<f64>() * dx;
         let (net, convected) = e.balance(dx);
-        assert!(stored > 0.1 * generated, "storage must matter: {stored} of {generated}");
+        assert!(
+            stored > 0.1 * generated,
+            "storage must matter: {stored} of {generated}"
+        );
         let err = (net - convected).abs() / generated;
         assert!(err < 1e-3, "balance with storage {err}");
         let inf = step(&cold, &rho_h(&cold, 1.02), 0.0);
