@@ -526,5 +526,18 @@ fn a_groove_passes_through_the_thermal_line() {
     assert!(tmax - tmin > 1.0, "film temperature {tmin}..{tmax} K");
     let m = &th.summary;
     assert!(m.max_film_temperature_over_travel_k.unwrap() >= tmax - 1e-9);
+    // the step fields carry the thermal viscosity (at the mid-film temperature, ~37 K above the
+    // inlet in the Hertz zone): well below the isothermal law's at the pressure maximum (the
+    // isothermal law there would give a ratio near 1: the pressures differ by a few %)
+    let at = |s: &Solution| {
+        let p = &s.fields.pressure;
+        let k = (0..p.len()).fold(0, |m, k| if p[k] > p[m] { k } else { m });
+        s.fields.viscosity.as_ref().unwrap()[k]
+    };
+    let ratio = at(&th) / at(&iso);
+    assert!(
+        ratio < 0.5,
+        "thermal / isothermal viscosity at the pressure maximum {ratio}"
+    );
     assert!(m.max_energy_balance_error.unwrap() < 1e-2);
 }
