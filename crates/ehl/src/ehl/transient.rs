@@ -512,7 +512,9 @@ fn run(
                 end.converged = false;
                 end.reason = f;
             }
-            if contact.solved() {
+            // a step whose Newton solve failed before any temperature update has no
+            // temperatures of its own: none rather than the last step's
+            if passes > 0 && contact.solved() {
                 step_thermal = Some(StepThermal::of(contact, passes, change));
             }
         }
