@@ -120,6 +120,60 @@ pub fn effective_viscosity(model: &Rheology, eta: f64, shear_rate: f64, p: f64) 
     shear_stress(model, eta, shear_rate, p) / shear_rate
 }
 
+/// The unlimited law in logarithms, for Newton iterations across the film: ln eta_eff and its
+/// slope s = d ln eta_eff / d ln gamma_dot at `ln_eta` = ln eta (eta in Pa s) and
+/// `ln_shear_rate` = ln |gamma_dot| (gamma_dot in 1/s; -inf for zero shear). The limiting shear
+/// stress is NOT applied (the film model caps per column, `thermal::film_energy`).
+///
+/// * Newtonian: (ln eta, 0);
+/// * Carreau (thesis eq. 2.15): ln eta_eff = ln eta + (n - 1)/2 ln(1 + x^2), x = eta gamma_dot /
+///   G_f, s = (n - 1) x^2 / (1 + x^2);
+/// * Eyring: ln eta_eff = ln eta + ln(asinh(x) / x), x = eta gamma_dot / tau_0,
+///   s = x / (sqrt(1 + x^2) asinh x) - 1.
+///
+/// x is formed as ln x, so nothing overflows however viscous the film: at ln x = 700 (where
+/// x itself overflows) Carreau gives ln eta + (n - 1) ln x. Same values as
+/// [`effective_viscosity`] (to round-off, tested) at one `exp`, one `ln_1p` and one `ln` per
+/// call instead of `powf` and `ln`, and with the slope analytic.
+pub fn ln_effective_viscosity(model: &Rheology, ln_eta: f64, ln_shear_rate: f64) -> (f64, f64) {
+    match *model {
+        Rheology::Newtonian => (ln_eta, 0.0),
+        Rheology::Carreau {
+            shear_modulus,
+            power_law_index,
+            ..
+        } => {
+            let e = 0.5 * (power_law_index - 1.0);
+            let lx = ln_eta + ln_shear_rate - shear_modulus.ln();
+            // l = ln(1 + x^2), r = x^2 / (1 + x^2), each without forming x^2
+            let (l, r) = if lx <= 0.0 {
+                let q = (2.0 * lx).exp();
+                (q.ln_1p(), q / (1.0 + q))
+            } else {
+                let q = (-2.0 * lx).exp();
+                (2.0 * lx + q.ln_1p(), 1.0 / (1.0 + q))
+            };
+            (ln_eta + e * l, 2.0 * e * r)
+        }
+        Rheology::Eyring { eyring_stress, .. } => {
+            let lx = ln_eta + ln_shear_rate - eyring_stress.ln();
+            if lx < -9.0 {
+                // asinh(x)/x = 1 - x^2/6 + 3 x^4/40: the x^4 term is below 1e-17 here
+                let x2 = (2.0 * lx).exp();
+                (ln_eta + (-x2 / 6.0).ln_1p(), -x2 / 3.0)
+            } else if lx > 300.0 {
+                // asinh(x) = ln 2 + ln x + O(1/x^2), sqrt(1 + x^2) = x (1 + O(1/x^2))
+                let a = std::f64::consts::LN_2 + lx;
+                (ln_eta + a.ln() - lx, 1.0 / a - 1.0)
+            } else {
+                let x = lx.exp();
+                let a = x.asinh();
+                (ln_eta + (a / x).ln(), x / (1.0f64.hypot(x) * a) - 1.0)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,5 +268,49 @@ mod tests {
         assert_eq!(shear_stress(&m, 0.04, 1e6, -5.0), 0.0);
         assert_eq!(effective_viscosity(&m, 0.04, 0.0, 0.0), 0.0);
         assert_eq!(effective_viscosity(&m, 0.04, 0.0, 1e6), 0.04);
+    }
+
+    #[test]
+    fn ln_effective_viscosity_matches_the_law_and_its_slope() {
+        // against exp-space `effective_viscosity` (no limit) to 1e-12 relative, and the slope
+        // against a central difference in ln gamma (step 1e-5: truncation ~1e-10, round-off
+        // ~1e-11 / 1e-5 = 1e-6 at worst; tolerance 1e-5 absolute) over 24 decades of x.
+        let models = [
+            Rheology::Newtonian,
+            CARREAU,
+            Rheology::Carreau {
+                shear_modulus: 4.5e6,
+                power_law_index: 0.993,
+                limiting_shear_coefficient: None,
+            },
+            Rheology::Eyring {
+                eyring_stress: 5e6,
+                limiting_shear_coefficient: None,
+            },
+        ];
+        let eta: f64 = 0.04;
+        for m in &models {
+            for dec in -12..=12 {
+                let x = 10f64.powi(dec) * 1.37;
+                let gd = x * 4.5e6 / eta;
+                let (l, s) = ln_effective_viscosity(m, eta.ln(), gd.ln());
+                let direct = effective_viscosity(m, eta, gd, 0.0);
+                assert!((l.exp() / direct - 1.0).abs() < 1e-12, "{m:?} x {x}");
+                let d: f64 = 1e-5;
+                let up = effective_viscosity(m, eta, gd * d.exp(), 0.0).ln();
+                let down = effective_viscosity(m, eta, gd * (-d).exp(), 0.0).ln();
+                let fd = (up - down) / (2.0 * d);
+                assert!((s - fd).abs() < 1e-5, "{m:?} x {x}: slope {s} vs {fd}");
+            }
+            // zero shear: the low-shear viscosity, no slope
+            assert_eq!(
+                ln_effective_viscosity(m, eta.ln(), f64::NEG_INFINITY),
+                (eta.ln(), 0.0)
+            );
+        }
+        // where x overflows f64 the logarithm stays finite: Carreau tends to the power law
+        let (l, s) = ln_effective_viscosity(&CARREAU, 700.0, 50.0);
+        let lx = 750.0 - 4.5e6f64.ln();
+        assert!((l - (700.0 + (0.57 - 1.0) * lx)).abs() < 1e-9 && (s - (0.57 - 1.0)).abs() < 1e-12);
     }
 }

@@ -29,7 +29,9 @@ use super::film::{FilmLaws, FilmProfile, OilThermal};
 use super::film_energy::{solve_lines, Line, LineOptions, LineSolution, LineTransient};
 use super::solid::{MovingHalfSpace, SolidThermal};
 use crate::grid::Grid;
-use crate::lubricant::rheology::{effective_viscosity, limiting_shear_stress};
+use crate::lubricant::rheology::{
+    effective_viscosity, limiting_shear_stress, ln_effective_viscosity,
+};
 use crate::lubricant::temperature::ThermalLaws;
 use crate::lubricant::Rheology;
 use crate::{Error, Result};
@@ -51,6 +53,16 @@ impl FilmLaws for ThermalLaws {
     /// `film_energy::line_coefficients`).
     fn effective_viscosity(&self, eta: f64, shear_rate: f64, p: f64, t: f64) -> f64 {
         effective_viscosity(&unlimited(self.rheology(t)), eta, shear_rate, p)
+    }
+    /// The closed form of the same law (no limit), [`ln_effective_viscosity`].
+    fn ln_effective_viscosity(
+        &self,
+        ln_eta: f64,
+        ln_shear_rate: f64,
+        _p: f64,
+        t: f64,
+    ) -> (f64, f64) {
+        ln_effective_viscosity(&self.rheology(t), ln_eta, ln_shear_rate)
     }
     fn limiting_shear_stress(&self, p: f64, t: f64) -> Option<f64> {
         limiting_shear_stress(&self.rheology(t), p)
@@ -157,6 +169,9 @@ pub struct ThermalContact {
     pub options: ContactOptions,
     /// per grid line, the film temperature (nx * nz, i-major) of the last update
     film: Vec<Vec<f64>>,
+    /// per grid line, the shear-thinning factors eta_eff / eta of the last update (nx * nz;
+    /// NaN: none yet), where the next update's column iterations start
+    thinning: Vec<Vec<f64>>,
     /// surface temperatures of body 1 and 2 (K), per cell
     surface: [Vec<f64>; 2],
     /// per grid line, the last solution (None before the first update)
@@ -217,6 +232,7 @@ impl ThermalContact {
             solids,
             options: ContactOptions::default(),
             film: vec![vec![t0; grid.nx * nz]; grid.ny],
+            thinning: vec![vec![f64::NAN; grid.nx * nz]; grid.ny],
             surface: [vec![t0; n], vec![t0; n]],
             lines: vec![None; grid.ny],
             start: vec![0; grid.ny],
@@ -422,12 +438,17 @@ impl ThermalContact {
                 .iter()
                 .map(|&j| self.film[j][start[j] * nz..len[j] * nz].to_vec())
                 .collect();
+            let thin: Vec<Vec<f64>> = rows
+                .iter()
+                .map(|&j| self.thinning[j][start[j] * nz..len[j] * nz].to_vec())
+                .collect();
             let out = solve_lines(
                 &self.rule,
                 &self.laws,
                 &self.oil,
                 &lines,
                 Some(&from),
+                Some(&thin),
                 &opts.line,
             );
             let solved = out
@@ -464,6 +485,7 @@ impl ThermalContact {
                 if let Some(s) = s {
                     let at = start[j] * nz;
                     self.film[j][at..at + s.t.len()].copy_from_slice(&s.t);
+                    self.thinning[j][at..at + s.t.len()].copy_from_slice(&s.thinning);
                 }
             }
             if change <= opts.surface_tol {

@@ -89,6 +89,29 @@ pub trait FilmLaws: Sync {
         let _ = (shear_rate, p, t);
         eta
     }
+    /// ln eta_eff and its slope d ln eta_eff / d ln gamma_dot at `ln_eta` = ln eta (the
+    /// low-shear viscosity) and `ln_shear_rate` = ln |gamma_dot| (-inf: zero shear), for the
+    /// Newton iteration of [`shear_thinning_profile`]. The default goes through
+    /// [`FilmLaws::effective_viscosity`] and a one-sided difference of relative step 1e-6 in
+    /// gamma_dot (slope accurate to ~1e-6); laws with a closed form override it (e.g. with
+    /// [`crate::lubricant::rheology::ln_effective_viscosity`]).
+    fn ln_effective_viscosity(
+        &self,
+        ln_eta: f64,
+        ln_shear_rate: f64,
+        p: f64,
+        t: f64,
+    ) -> (f64, f64) {
+        const STEP: f64 = 1e-6;
+        let (eta, g) = (ln_eta.exp(), ln_shear_rate.exp());
+        let a = self.effective_viscosity(eta, g, p, t);
+        if !(g > 0.0) {
+            return (a.ln(), 0.0);
+        }
+        let b = self.effective_viscosity(eta, g * (1.0 + STEP), p, t);
+        let s = (b.ln() - a.ln()) / STEP.ln_1p();
+        (a.ln(), if s.is_finite() { s } else { 0.0 })
+    }
     /// The limiting shear stress tau_L (Pa) at (p, T), if the law has one (None: no limit).
     /// [`super::film_energy::line_coefficients`] caps each column's stress with it.
     fn limiting_shear_stress(&self, p: f64, t: f64) -> Option<f64> {
@@ -379,16 +402,7 @@ fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 
 /// Velocity profile of a generalized-Newtonian column: the effective viscosity at each point
 /// depends on the local shear rate gamma = |tau| / eta_eff, which depends on the whole profile.
-///
-/// Unknowns y_k = ln eta_eff,k; residual R_k = y_k - ln laws.effective_viscosity(eta_k,
-/// gamma_k(y), p, T_k); Newton's method with a forward-difference Jacobian (step 1e-7 in y,
-/// nz + 1 evaluations of the cheap O(nz) stress, so the Jacobian is accurate to ~1e-7 and the
-/// convergence is quadratic down to that level, then linear at a rate ~1e-7) and a halving
-/// line search on max |R|. A Newtonian law gives R = 0 at y = ln eta: 0 iterations.
-/// Non-convergence within `opts.max_iter` is reported in the result, not as an error.
-///
-/// `eta` is the low-shear viscosity at the points (Pa s), `rho` the density (kg/m^3), `p` the
-/// pressure (Pa), `t` the temperature at the points (K).
+/// Starts from the low-shear viscosity; [`shear_thinning_profile_from`] takes a start.
 #[allow(clippy::too_many_arguments)]
 pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
     rule: &Lobatto,
@@ -400,14 +414,48 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
     rho: &[f64],
     opts: ShearOptions,
 ) -> Result<ShearThinningProfile, FilmError> {
+    shear_thinning_profile_from(rule, laws, col, p, t, eta, rho, opts, None)
+}
+
+/// [`shear_thinning_profile`] from a start `start` (the effective viscosity at the points, Pa s;
+/// e.g. the last solution of a neighbouring state, which cuts the Newton iterations to one or
+/// two; `None`: the low-shear viscosity `eta`).
+///
+/// Unknowns y_k = ln eta_eff,k; residual R_k = y_k - ln eta_law(eta_k, gamma_k(y), p, T_k)
+/// ([`FilmLaws::ln_effective_viscosity`]); Newton's method with the Jacobian
+///   dR_k/dy_j = delta_kj - s_k (-delta_kj + d ln|tau_k| / dy_j),
+/// s_k = d ln eta_law / d ln gamma at point k (the law's only contribution, from the same call
+/// as its value), tau_k = (tau_a + z_k dp/dx, tau_b + z_k dp/dy) with tau_a, tau_b functions of
+/// all y through F0 = h sum w_j e^{-y_j} and F1 = h^2 sum w_j zeta_j e^{-y_j}; a halving line
+/// search on max |R|. A Newtonian law gives R = 0 at y = ln eta: 0 iterations.
+/// Non-convergence within `opts.max_iter` is reported in the result, not as an error.
+///
+/// `eta` is the low-shear viscosity at the points (Pa s), `rho` the density (kg/m^3), `p` the
+/// pressure (Pa), `t` the temperature at the points (K).
+#[allow(clippy::too_many_arguments)]
+pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
+    rule: &Lobatto,
+    laws: &L,
+    col: &Column,
+    p: f64,
+    t: &[f64],
+    eta: &[f64],
+    rho: &[f64],
+    opts: ShearOptions,
+    start: Option<&[f64]>,
+) -> Result<ShearThinningProfile, FilmError> {
     col.check()?;
     check_points(rule, "viscosity", eta)?;
     check_points(rule, "temperature", t)?;
+    if let Some(s) = start {
+        check_points(rule, "start viscosity", s)?;
+    }
     let n = rule.len();
     let h = col.h;
+    let ln_eta: Vec<f64> = eta.iter().map(|e| e.ln()).collect();
     let mut eta_eff = vec![0.0; n];
-    // the residual R(y) and the law's values
-    let residual = |y: &[f64], eta_eff: &mut [f64], r: &mut [f64]| -> Result<(), FilmError> {
+    // the residual R(y) into r and the law's slopes into s
+    let residual = |y: &[f64], eta_eff: &mut [f64], r: &mut [f64], s: &mut [f64]| {
         for k in 0..n {
             eta_eff[k] = y[k].exp();
         }
@@ -415,38 +463,36 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
         for k in 0..n {
             let z = h * rule.points[k];
             let tau = (ta + z * col.dpdx).hypot(tb + z * col.dpdy);
-            let gamma = tau / eta_eff[k];
-            let law = laws.effective_viscosity(eta[k], gamma, p, t[k]);
-            if !(law > 0.0 && law.is_finite()) {
+            let (law, slope) = laws.ln_effective_viscosity(ln_eta[k], tau.ln() - y[k], p, t[k]);
+            if !law.is_finite() {
                 return Err(FilmError::Law {
                     law: "effective viscosity",
-                    value: law,
+                    value: law.exp(),
                     p,
                     t: t[k],
                 });
             }
-            r[k] = y[k] - law.ln();
+            r[k] = y[k] - law;
+            s[k] = slope;
         }
         Ok(())
     };
     let norm = |r: &[f64]| r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut y: Vec<f64> = eta.iter().map(|e| e.ln()).collect();
-    let mut r = vec![0.0; n];
-    residual(&y, &mut eta_eff, &mut r)?;
+    let mut y: Vec<f64> = match start {
+        Some(s) => s.iter().map(|e| e.ln()).collect(),
+        None => ln_eta.clone(),
+    };
+    let (mut r, mut slope) = (vec![0.0; n], vec![0.0; n]);
+    residual(&y, &mut eta_eff, &mut r, &mut slope)?;
     let mut res = norm(&r);
     let mut iterations = 0;
     let mut jac = vec![0.0; n * n];
-    let (mut yp, mut rp, mut scratch) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut dta, mut dtb, mut slope) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut yp, mut rp, mut sp, mut scratch) =
+        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut dta, mut dtb, mut tau) = (vec![0.0; n], vec![0.0; n], vec![(0.0, 0.0); n]);
+    let mut delta = vec![0.0; n];
     while res > opts.tol && iterations < opts.max_iter {
         iterations += 1;
-        // The Jacobian of r_k = y_k - ln eta_law(gamma_k), gamma_k = |tau_k| e^{-y_k},
-        // tau_k = (tau_a + z_k dp/dx, tau_b + z_k dp/dy), with tau_a, tau_b functions of all y
-        // through F0 = h sum w_j e^{-y_j} and F1 = h^2 sum w_j zeta_j e^{-y_j}:
-        //   dr_k/dy_j = delta_kj - s_k (-delta_kj + d ln|tau_k| / dy_j),
-        // s_k = d ln eta_law / d ln gamma at point k, the law's only contribution, by one
-        // difference per point (n law evaluations instead of n^2 for a difference Jacobian;
-        // measured: the thermal Table 3.7 line at SRR 0.5 spent 3/4 of its time here).
         for k in 0..n {
             eta_eff[k] = y[k].exp();
         }
@@ -458,25 +504,9 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
             dta[j] = (-col.dpdx * d1 - ta * d0) / f0;
             dtb[j] = (-col.dpdy * d1 - tb * d0) / f0;
         }
-        const STEP: f64 = 1e-6;
-        let mut tau = vec![(0.0, 0.0); n];
         for k in 0..n {
             let z = h * rule.points[k];
-            let (tx, ty) = (ta + z * col.dpdx, tb + z * col.dpdy);
-            tau[k] = (tx, ty);
-            let g = tx.hypot(ty) / eta_eff[k];
-            slope[k] = if g > 0.0 {
-                let a = laws.effective_viscosity(eta[k], g, p, t[k]);
-                let b = laws.effective_viscosity(eta[k], g * (1.0 + STEP), p, t[k]);
-                let s = (b.ln() - a.ln()) / (1.0 + STEP).ln();
-                if s.is_finite() {
-                    s
-                } else {
-                    0.0
-                }
-            } else {
-                0.0
-            };
+            tau[k] = (ta + z * col.dpdx, tb + z * col.dpdy);
         }
         for k in 0..n {
             let (tx, ty) = tau[k];
@@ -491,21 +521,22 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
                 jac[k * n + j] = own - slope[k] * (-own + dln);
             }
         }
-        let mut delta: Vec<f64> = r.iter().map(|v| -v).collect();
+        delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
         if !dense_solve(&mut jac, &mut delta, n) {
             // singular Jacobian: a plain fixed-point step y <- ln eta_law
-            delta = r.iter().map(|v| -v).collect();
+            delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
         }
         let mut lambda = 1.0;
         loop {
             for k in 0..n {
                 yp[k] = y[k] + lambda * delta[k];
             }
-            residual(&yp, &mut scratch, &mut rp)?;
+            residual(&yp, &mut scratch, &mut rp, &mut sp)?;
             let rn = norm(&rp);
             if rn < res || lambda < 1e-3 {
-                y.copy_from_slice(&yp);
-                r.copy_from_slice(&rp);
+                std::mem::swap(&mut y, &mut yp);
+                std::mem::swap(&mut r, &mut rp);
+                std::mem::swap(&mut slope, &mut sp);
                 res = rn;
                 break;
             }
@@ -745,6 +776,21 @@ mod tests {
             assert!(rel(s.eta_eff[k], law) < 1e-10);
         }
         assert!((f.u[8] - col.u2).abs() < 1e-12 && f.v[8].abs() < 1e-12);
+        // a start: from the solution itself no iteration; from a start 30 % off the same
+        // solution (to the tolerance, 1e-10 in ln eta) in fewer iterations than from eta
+        let again = |start: &[f64]| {
+            let o = ShearOptions::default();
+            shear_thinning_profile_from(&rule, &laws, &col, 1e9, &t, &eta, &rho, o, Some(start))
+                .unwrap()
+        };
+        let same = again(&s.eta_eff);
+        assert_eq!((same.iterations, &same.eta_eff), (0, &s.eta_eff));
+        let off: Vec<f64> = s.eta_eff.iter().map(|e| 1.3 * e).collect();
+        let warm = again(&off);
+        assert!(warm.converged && warm.iterations < s.iterations, "{warm:?}");
+        for (a, b) in warm.eta_eff.iter().zip(&s.eta_eff) {
+            assert!(rel(*a, *b) < 1e-9);
+        }
         let short = ShearOptions {
             tol: 1e-10,
             max_iter: 1,

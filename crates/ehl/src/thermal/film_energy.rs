@@ -64,7 +64,7 @@
 
 use super::collocation::Lobatto;
 use super::film::{
-    shear_thinning_profile, Column, FilmError, FilmLaws, FilmProfile, OilThermal, ShearOptions,
+    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, ShearOptions,
 };
 use crate::linalg::banded::Banded;
 use rayon::prelude::*;
@@ -310,6 +310,9 @@ pub struct LineSolution {
     pub converged: bool,
     /// columns whose shear-thinning iteration did not converge in the last iteration
     pub shear_unconverged: usize,
+    /// the shear-thinning factors eta_eff / eta of the last coefficients (nx * nz), a start
+    /// for the next solve of the line ([`solve_line_from`])
+    pub thinning: Vec<f64>,
 }
 
 /// The coefficients of a line at the temperature `t` (K, nx * nz, i-major): the laws at each
@@ -322,6 +325,23 @@ pub fn line_coefficients<L: FilmLaws + ?Sized>(
     line: &Line,
     t: &[f64],
     opts: &LineOptions,
+) -> Result<(LineCoefficients, Vec<FilmProfile>, usize), FilmError> {
+    let mut thinning = vec![f64::NAN; t.len()];
+    line_coefficients_from(rule, laws, line, t, opts, &mut thinning)
+}
+
+/// [`line_coefficients`] with the shear-thinning iteration of each column started from the
+/// factors eta_eff / eta in `thinning` (nx * nz, i-major; a column with a non-finite or
+/// non-positive factor starts from the low-shear viscosity), which are overwritten with this
+/// solution's factors. Between the film iterations of a line the factors move little, and a
+/// column started from the last ones needs one or two Newton iterations instead of 5-10.
+pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
+    rule: &Lobatto,
+    laws: &L,
+    line: &Line,
+    t: &[f64],
+    opts: &LineOptions,
+    thinning: &mut [f64],
 ) -> Result<(LineCoefficients, Vec<FilmProfile>, usize), FilmError> {
     let nz = rule.len();
     line.check(nz)?;
@@ -340,7 +360,15 @@ pub fn line_coefficients<L: FilmLaws + ?Sized>(
         density: vec![0.0; nx * nz],
         mass_storage: vec![0.0; nx * nz],
     };
+    if thinning.len() != nx * nz {
+        return Err(FilmError::Input(format!(
+            "the thinning factors have {} values, the line {}",
+            thinning.len(),
+            nx * nz
+        )));
+    }
     let mut profiles = Vec::with_capacity(nx);
+    let mut start = vec![0.0; nz];
     let mut unconverged = 0;
     let (mut eta, mut rho, mut drho) = (vec![0.0; nz], vec![0.0; nz], vec![0.0; nz]);
     for i in 0..nx {
@@ -372,7 +400,24 @@ pub fn line_coefficients<L: FilmLaws + ?Sized>(
             }
         }
         let mut col = line.column(i);
-        let mut s = shear_thinning_profile(rule, laws, &col, p, ti, &eta, &rho, opts.shear)?;
+        let factors = &mut thinning[i * nz..(i + 1) * nz];
+        let warm = factors.iter().all(|f| *f > 0.0 && f.is_finite());
+        if warm {
+            for k in 0..nz {
+                start[k] = eta[k] * factors[k];
+            }
+        }
+        let mut s = shear_thinning_profile_from(
+            rule,
+            laws,
+            &col,
+            p,
+            ti,
+            &eta,
+            &rho,
+            opts.shear,
+            warm.then_some(start.as_slice()),
+        )?;
         // a flux-driven column: the pressure gradient that carries the target pressure-flow
         // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
         // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved twice more).
@@ -391,8 +436,21 @@ pub fn line_coefficients<L: FilmLaws + ?Sized>(
                     break;
                 }
                 col.dpdx = g;
-                s = shear_thinning_profile(rule, laws, &col, p, ti, &eta, &rho, opts.shear)?;
+                s = shear_thinning_profile_from(
+                    rule,
+                    laws,
+                    &col,
+                    p,
+                    ti,
+                    &eta,
+                    &rho,
+                    opts.shear,
+                    Some(&s.eta_eff),
+                )?;
             }
+        }
+        for k in 0..nz {
+            factors[k] = s.eta_eff[k] / eta[k];
         }
         if !s.converged {
             unconverged += 1;
@@ -720,6 +778,21 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
     t_start: Option<&[f64]>,
     opts: &LineOptions,
 ) -> Result<LineSolution, FilmError> {
+    solve_line_from(rule, laws, oil, line, t_start, None, opts)
+}
+
+/// [`solve_line`] with the shear-thinning iteration of each column started from the factors
+/// `thinning` (nx * nz; see [`line_coefficients_from`]; `None`: from the low-shear viscosity),
+/// e.g. the [`LineSolution::thinning`] of the line's last solve.
+pub fn solve_line_from<L: FilmLaws + ?Sized>(
+    rule: &Lobatto,
+    laws: &L,
+    oil: &OilThermal,
+    line: &Line,
+    t_start: Option<&[f64]>,
+    thinning: Option<&[f64]>,
+    opts: &LineOptions,
+) -> Result<LineSolution, FilmError> {
     let nz = rule.len();
     line.check(nz)?;
     let nx = line.nx();
@@ -764,9 +837,21 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
     // line in pure rolling at L = 2.2, settled into a limit cycle of +-4 K at 0.4, and converged
     // at 0.2-0.3)
     let (mut omega, mut last) = (opts.relaxation, f64::INFINITY);
+    let mut thinning = match thinning {
+        Some(f) if f.len() == nx * nz => f.to_vec(),
+        Some(f) => {
+            return Err(FilmError::Input(format!(
+                "the thinning factors have {} values, the line {}",
+                f.len(),
+                nx * nz
+            )))
+        }
+        None => vec![f64::NAN; nx * nz],
+    };
     loop {
         iterations += 1;
-        let (coef, profiles, shear_unconverged) = line_coefficients(rule, laws, line, &t, opts)?;
+        let (coef, profiles, shear_unconverged) =
+            line_coefficients_from(rule, laws, line, &t, opts, &mut thinning)?;
         let solved = solve_line_linear(rule, oil, line, &coef)?;
         let change = solved
             .iter()
@@ -786,6 +871,7 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
                 change,
                 converged,
                 shear_unconverged,
+                thinning,
             });
         }
         if change > last {
@@ -801,14 +887,15 @@ pub fn solve_line<L: FilmLaws + ?Sized>(
 /// How far below the coldest boundary temperature an iterate of [`solve_line`] may go (K).
 pub const FLOOR_MARGIN: f64 = 30.0;
 
-/// [`solve_line`] on several independent lines in parallel (rayon); `t_start` as there, one
-/// per line.
+/// [`solve_line_from`] on several independent lines in parallel (rayon); `t_start` and
+/// `thinning` as there, one per line.
 pub fn solve_lines<L: FilmLaws + ?Sized>(
     rule: &Lobatto,
     laws: &L,
     oil: &OilThermal,
     lines: &[Line],
     t_start: Option<&[Vec<f64>]>,
+    thinning: Option<&[Vec<f64>]>,
     opts: &LineOptions,
 ) -> Vec<Result<LineSolution, FilmError>> {
     lines
@@ -816,7 +903,8 @@ pub fn solve_lines<L: FilmLaws + ?Sized>(
         .enumerate()
         .map(|(j, line)| {
             let s = t_start.map(|s| s[j].as_slice());
-            solve_line(rule, laws, oil, line, s, opts)
+            let f = thinning.map(|f| f[j].as_slice());
+            solve_line_from(rule, laws, oil, line, s, f, opts)
         })
         .collect()
 }
@@ -1216,67 +1304,5 @@ mod tests {
                 assert_eq!(*t, T0);
             }
         }
-    }
-
-    /// Timing of a line of 256 cells x 7 points (printed, not asserted).
-    #[test]
-    fn line_timing() {
-        let rule = Lobatto::new(7);
-        let laws = ExpLaw {
-            eta0: 0.05,
-            beta: 0.03,
-            t0: T0,
-            rho0: 870.0,
-            d: 6.5e-4,
-        };
-        let nx = 256;
-        let h: Vec<f64> = (0..nx)
-            .map(|i| 1e-5 + ((i as f64 - 128.0) * 1e-5).powi(2) / 0.1)
-            .collect();
-        let dpdx = vec![1e8; nx];
-        let zeros = vec![0.0; nx];
-        let walls = vec![T0; nx];
-        let line = Line {
-            dx: 1e-5,
-            h: &h,
-            p: &zeros,
-            dpdx: &dpdx,
-            dpdy: &zeros,
-            u1: 12.0,
-            u2: 8.0,
-            t1: &walls,
-            t2: &walls,
-            t_in: T0,
-            extra_source: None,
-            poiseuille_flux_x: None,
-            transient: None,
-        };
-        let opts = LineOptions::default();
-        let t: Vec<f64> = vec![T0; nx * 7];
-        let (coef, _, _) = line_coefficients(&rule, &laws, &line, &t, &opts).unwrap();
-        let n = 200;
-        let start = std::time::Instant::now();
-        for _ in 0..n {
-            std::hint::black_box(solve_line_linear(&rule, &OIL, &line, &coef).unwrap());
-        }
-        let linear = start.elapsed().as_secs_f64() / n as f64;
-        let start = std::time::Instant::now();
-        for _ in 0..n {
-            std::hint::black_box(line_coefficients(&rule, &laws, &line, &t, &opts).unwrap());
-        }
-        let coefficients = start.elapsed().as_secs_f64() / n as f64;
-        let start = std::time::Instant::now();
-        let s = solve_line(&rule, &laws, &OIL, &line, None, &opts).unwrap();
-        let full = start.elapsed().as_secs_f64();
-        eprintln!(
-            "line 256 x 7: linear solve {:.1} us, coefficients {:.1} us, fixed point {:.2} ms \
-             ({} iterations, converged {})",
-            linear * 1e6,
-            coefficients * 1e6,
-            full * 1e3,
-            s.iterations,
-            s.converged
-        );
-        assert!(s.converged);
     }
 }
