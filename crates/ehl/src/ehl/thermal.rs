@@ -203,6 +203,7 @@ fn run(
         film_change = self::film_change(&h_si, &h_prev);
         h_prev.copy_from_slice(&h_si);
         settled = estimate <= thermal.tolerance_k
+            && contact.inner_residual() <= thermal.tolerance_k
             && film_change * rho / (1.0 - rho) <= thermal.film_tolerance;
         if settled && end.as_ref().is_some_and(|e: &super::StageEnd| e.converged) {
             break;

@@ -479,7 +479,11 @@ fn run(
                     }
                 }
                 // the first pass's change is the step's own (time), not the iteration's
-                if passes >= 2 && change <= tp.tolerance_k && film_change <= tp.film_tolerance {
+                if passes >= 2
+                    && change <= tp.tolerance_k
+                    && contact.inner_residual() <= tp.tolerance_k
+                    && film_change <= tp.film_tolerance
+                {
                     break;
                 }
                 if passes >= tp.max_step_passes {

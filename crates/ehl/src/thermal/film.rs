@@ -369,7 +369,7 @@ pub struct ShearThinningProfile {
 /// Solve a small dense system in place (Gaussian elimination with partial pivoting); false if
 /// singular. Not `crate::linalg::dense::DenseLu`: that one keeps its factors in single
 /// precision (a preconditioner), too coarse for a Newton iteration to 1e-10 on nz <= 33 points.
-fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+pub(crate) fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     for c in 0..n {
         let p = (c..n)
             .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
