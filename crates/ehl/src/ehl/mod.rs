@@ -203,6 +203,9 @@ pub enum Termination {
         outer: usize,
         change_k: f64,
         film_change: f64,
+        /// the residual the last temperature update left in the film and at the surfaces (K,
+        /// [`crate::thermal::ThermalContact::inner_residual`])
+        residual_k: f64,
     },
     /// thermal runs: the temperature solve failed (why)
     ThermalFailed(String),
@@ -232,9 +235,10 @@ impl std::fmt::Display for Termination {
                 outer,
                 change_k,
                 film_change,
+                residual_k,
             } => write!(
                 f,
-                "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K and the film by {film_change:.1e} of its thinnest"
+                "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K, the film by {film_change:.1e} of its thinnest, and the temperature solve left a residual of {residual_k:.3} K"
             ),
             Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(

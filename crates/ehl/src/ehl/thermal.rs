@@ -235,6 +235,7 @@ fn run(
             outer,
             change_k: change,
             film_change,
+            residual_k: contact.inner_residual(),
         };
     }
     let mut ehl = finish(problem, &mut sys, st, end, &stats);

@@ -491,6 +491,7 @@ fn run(
                         outer: passes,
                         change_k: change,
                         film_change,
+                        residual_k: contact.inner_residual(),
                     });
                     break;
                 }
