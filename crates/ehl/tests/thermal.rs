@@ -187,11 +187,11 @@ fn the_thermal_traction_curve_peaks_and_falls() {
 
 /// Grid convergence of the thermal solution (the Table 3.7 line at SRR 0.3, Carreau with n(T)):
 /// 256, 512 and 1024 cells all converge (1024 did not before the thick inlet's cross-film
-/// convection was upwinded: the film temperature oscillated to -900 K there), and the friction
+/// Peclet number was bounded: the film temperature oscillated to -900 K there), and the friction
 /// coefficient and central film converge: each halving of dx must at least halve the change
-/// (measured: f 0.014826, 0.014751, 0.014729, 0.014722 at 2048, ratio ~3.3 per halving; central
-/// film 1.03234, 1.03670, 1.03771, 1.03798 um, ratio ~4), and the 512-1024 change must be below
-/// 0.5 % (measured 0.15 % in f, 0.1 % in the film).
+/// (measured: f 0.0148265, 0.0147519, 0.0147309, 0.0147249 at 2048, ratio ~3.5 per halving;
+/// central film 1.03229, 1.03666, 1.03759, 1.03774 um, ratio 4.7-6.5), and the 512-1024 change
+/// must be below 0.5 % (measured 0.14 % in f, 0.09 % in the film).
 #[test]
 fn the_thermal_line_converges_with_the_grid() {
     let mut f = Vec::new();

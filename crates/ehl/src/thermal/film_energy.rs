@@ -39,17 +39,16 @@
 //! * J at cell i is -(Q_{i+1/2} - Q_{i-1/2}) / dx, Q_{face} the rule's cumulative integral of
 //!   the face flux m_face, so that dJ/dzeta matches the upwind divergence (to the rule's
 //!   accuracy): the discrete energy balance then telescopes (see [`LineEnergy`]).
-//! * The cross-film convection c J dT/dzeta is collocated (the rule's derivative) except in the
-//!   thick inlet, where the film is more than [`UPWIND_FILM_RATIO`] times the line's thinnest,
-//!   at points whose Peclet number c |J| h dzeta / k_f exceeds [`UPWIND_PECLET`] (dzeta the
-//!   spacing to the upstream neighbour): there it is the first-order upwind difference to that
-//!   neighbour. In the thick inlet, where a reverse flow turns, J is the x-difference of
-//!   column fluxes over dx and reaches Peclet numbers of ~100 on fine grids; collocated there,
-//!   the temperature oscillated across the film (measured: -900 K at the first cells of the
-//!   Table 3.7 line at 1024 cells, dx = 2 um, and on the thesis roller at 256 x 256: the run
-//!   ended with a negative density). The upwind difference does not telescope with the
-//!   rule's weights: the energy balance of those points holds to its truncation error, which
-//!   the reported balance includes.
+//! * In the thick inlet, where the film is more than [`UPWIND_FILM_RATIO`] times the line's
+//!   thinnest, a column's conduction across the film is raised so that no point's Peclet number
+//!   c |J| h dzeta / k exceeds [`UPWIND_PECLET`] ([`cell_conductivity`]). There, where a reverse
+//!   flow turns, J is the x-difference of column fluxes over dx and reaches Peclet numbers of
+//!   ~160 on fine grids; with the oil's conductivity the collocated c J dT/dzeta oscillated
+//!   across the film (measured: -900 K at the first cells of the Table 3.7 line at 1024 cells,
+//!   dx = 2 um, and on the thesis roller at 256 x 256: the run ended with a negative density).
+//!   The artificial conduction is uniform across the column, so the balance still telescopes; a
+//!   first-order upwind difference across z, tried first, stabilised it as well but put the
+//!   balance of a pure-rolling line 0.6 % off.
 //! * The v dT/dy term (and the y-part of J) couples the lines: it is not modelled here; a
 //!   caller on a 2D grid can pass it, lagged, through [`Line::extra_source`].
 //! * Unknowns theta = T - T_in (a line with no heating whose surfaces and inlet are at T_in
@@ -577,17 +576,34 @@ fn face_fluxes(
     (mf, j)
 }
 
-/// The cross-film Peclet number c |J| h dzeta / k_f of a collocation point above which its
-/// cross-film convection is upwinded (the classical bound of central differences), where the
-/// film is more than [`UPWIND_FILM_RATIO`] times the line's thinnest.
+/// The largest cross-film Peclet number c |J| h dzeta / k of a collocation point (dzeta the
+/// local spacing of the points) that the energy equation keeps where the film is more than
+/// [`UPWIND_FILM_RATIO`] times the line's thinnest (the classical bound of central
+/// differences); see [`cell_conductivity`].
 pub const UPWIND_PECLET: f64 = 2.0;
 
-/// Upwinding across the film applies only where the film is more than this many times the
-/// line's thinnest: the thick inlet, where the collocation oscillated. Nearer the contact the
-/// collocated scheme keeps the energy balance exact (see [`LineEnergy`]); the upwind difference
-/// would not (measured: 2.5 % on a line 1-5 times its thinnest with Peclet numbers above 2
-/// everywhere).
+/// The cross-film conduction is raised only where the film is more than this many times the
+/// line's thinnest: the thick inlet, where the collocation oscillated.
 pub const UPWIND_FILM_RATIO: f64 = 10.0;
+
+/// The conductivity (W/(m K)) across the film of a cell of film `h` (m) on a line whose thinnest
+/// film is `h_min`, with the cross-film mass fluxes `j` at its points (kg/(m^2 s)): the oil's
+/// `kf`, raised where the film is more than [`UPWIND_FILM_RATIO`] times the thinnest to
+/// c max_k |J_k| h dzeta_k / [`UPWIND_PECLET`] when that is larger (dzeta_k the half-distance of
+/// point k's neighbours), so that no point's Peclet number exceeds [`UPWIND_PECLET`]. An
+/// artificial conduction, uniform across the column: its flux telescopes with the rule's
+/// weights like the oil's, so the energy balance stays exact ([`line_energy`] uses the same
+/// conductivity; the heat it carries to the walls is counted as conducted).
+pub fn cell_conductivity(rule: &Lobatto, kf: f64, cp: f64, h: f64, h_min: f64, j: &[f64]) -> f64 {
+    if !(h > UPWIND_FILM_RATIO * h_min) {
+        return kf;
+    }
+    let nz = rule.len();
+    (1..nz - 1).fold(kf, |k, p| {
+        let dz = 0.5 * (rule.points[p + 1] - rule.points[p - 1]);
+        k.max(cp * j[p].abs() * h * dz / UPWIND_PECLET)
+    })
+}
 
 /// One linear solve of the energy equation of a line with given coefficients: returns T (K) at
 /// every point (nx * nz, i-major, the surface temperatures at k = 0 and nz - 1).
@@ -624,6 +640,7 @@ pub fn solve_line_linear(
     let mut b = vec![0.0; nx * ni];
     for i in 0..nx {
         let h = line.h[i];
+        let kc = cell_conductivity(rule, kf, cp, h, h_min, &jflux[i * nz..(i + 1) * nz]);
         let th1 = line.t1[i] - t_in;
         let th2 = line.t2[i] - t_in;
         for k in 1..nz - 1 {
@@ -639,25 +656,8 @@ pub fn solve_line_linear(
                 a.add(r, r + ni, cp * inv_dx * right);
             }
             let jk = jflux[at];
-            // the cross-film convection upwinded where the point's Peclet number exceeds 2 (see
-            // the module documentation)
-            let up = if jk > 0.0 { k - 1 } else { k + 1 };
-            let dz = (rule.points[k] - rule.points[up]).abs();
-            let upwind =
-                h > UPWIND_FILM_RATIO * h_min && cp * jk.abs() * h * dz / kf > UPWIND_PECLET;
             for l in 0..nz {
-                let d1 = if upwind {
-                    if l == k {
-                        1.0 / (rule.points[k] - rule.points[up])
-                    } else if l == up {
-                        -1.0 / (rule.points[k] - rule.points[up])
-                    } else {
-                        0.0
-                    }
-                } else {
-                    rule.d1[k * nz + l]
-                };
-                let v = cp * jk * d1 - kf / h * rule.d2[k * nz + l];
+                let v = cp * jk * rule.d1[k * nz + l] - kc / h * rule.d2[k * nz + l];
                 if l == 0 {
                     b[r] -= v * th1;
                 } else if l == nz - 1 {
@@ -713,6 +713,15 @@ pub fn line_energy(
     let (mf, _) = face_fluxes(rule, nx, 0.0, &coef.mass_flux, &coef.mass_storage);
     let w = &rule.weights;
     let kf = oil.conductivity;
+    // the conductivity of each cell, as the linear solve used it (see `cell_conductivity`)
+    let (_, jflux) = face_fluxes(rule, nx, 1.0 / line.dx, &coef.mass_flux, &coef.mass_storage);
+    let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+    let kcell: Vec<f64> = (0..nx)
+        .map(|i| {
+            let j = &jflux[i * nz..(i + 1) * nz];
+            cell_conductivity(rule, kf, oil.heat_capacity, line.h[i], h_min, j)
+        })
+        .collect();
     let mut e = LineEnergy {
         generated: vec![0.0; nx],
         q1: vec![0.0; nx],
@@ -744,8 +753,8 @@ pub fn line_energy(
                 .sum::<f64>();
         let d0: f64 = (0..nz).map(|l| rule.d1[l] * col[l]).sum();
         let dn: f64 = (0..nz).map(|l| rule.d1[(nz - 1) * nz + l] * col[l]).sum();
-        e.q1_gradient[i] = kf / h * d0;
-        e.q2_gradient[i] = -kf / h * dn;
+        e.q1_gradient[i] = kcell[i] / h * d0;
+        e.q2_gradient[i] = -kcell[i] / h * dn;
     }
     let wall = |k: usize| k == 0 || k == nz - 1;
     for f in 0..=nx {
@@ -775,7 +784,6 @@ pub fn line_energy(
     // the consistent wall fluxes: the equation's residual at the two wall points (which are
     // not collocation points), weighted by the end weights, moved into the wall flux
     let inv_dx = 1.0 / line.dx;
-    let (_, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &coef.mass_storage);
     let cp = oil.heat_capacity;
     for i in 0..nx {
         let h = line.h[i];
@@ -797,7 +805,7 @@ pub fn line_energy(
                 d1t += rule.d1[k * nz + l] * col[l];
                 d2t += rule.d2[k * nz + l] * col[l];
             }
-            r += cp * jflux[at] * d1t - kf / h * d2t + h * coef.compression[at] * t[at]
+            r += cp * jflux[at] * d1t - kcell[i] / h * d2t + h * coef.compression[at] * t[at]
                 - h * coef.heating[at];
             if let Some(tr) = line
                 .transient
@@ -910,9 +918,12 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         let converged = change <= opts.tol;
         if converged || iterations >= opts.max_iter {
+            // the residual of the map the iteration runs, the floor included (a point held at
+            // the floor by a solve below it has settled there)
             let cell_change = (0..nx)
                 .map(|i| {
-                    (i * nz..(i + 1) * nz).fold(0.0f64, |m, at| m.max((solved[at] - t[at]).abs()))
+                    (i * nz..(i + 1) * nz)
+                        .fold(0.0f64, |m, at| m.max((solved[at].max(floor) - t[at]).abs()))
                 })
                 .collect();
             let energy = line_energy(rule, oil, line, &coef, &solved);
