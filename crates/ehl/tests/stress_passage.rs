@@ -384,3 +384,32 @@ fn hertz_line_passage_gives_mcewen_tau_xz_range_and_von_mises() {
     }
     eprintln!("{} complete columns: tau_xz range {range_exact:.4} p0, von Mises {vm_exact:.4} p0, worst error {worst:.1e} p0", cols.len());
 }
+
+/// A window too shallow for the maxima gets a warning: in the smooth rolling line the tau_xz
+/// range peaks at 0.5 b and von Mises at 0.70 b (McEwen), so a window to 0.3 b puts both on its
+/// deepest layer; the window to 1.0 b of [`steady_and_passage`] holds them and warns of neither.
+#[test]
+fn a_maximum_on_the_deepest_window_layer_is_warned() {
+    let steady = run(&smooth_line("", ""));
+    let b = steady.summary.hertz_half_width_m;
+    let case = parse_str(&smooth_line("", ""), "case.toml", &[]).unwrap();
+    let duration = 3.2 * b / case.motion.as_ref().unwrap().u1();
+    let passage = |window: f64| {
+        let s = run(&smooth_line(
+            &format!("travel = {{ duration = {duration:e}, steps = 103 }}"),
+            &format!("window = {window}\n"),
+        ));
+        assert!(s.summary.converged, "{}", s.summary.termination);
+        s.summary.warnings.clone()
+    };
+    let deepest = |w: &[String], name: &str| {
+        w.iter().any(|m| m.contains(name) && m.contains("deepest layer of the passage window"))
+    };
+    let shallow = passage(0.3);
+    assert!(
+        deepest(&shallow, "tau_xz range") && deepest(&shallow, "max-over-passage von Mises"),
+        "{shallow:?}"
+    );
+    let deep = passage(1.0);
+    assert!(!deep.iter().any(|m| m.contains("deepest layer")), "{deep:?}");
+}

@@ -561,10 +561,34 @@ pub fn summarise(case: &Case, analysis: &StressAnalysis, summary: &mut Summary) 
     summary.stress = Some(per_body);
 }
 
-/// The passage keys of `summary` and their warnings (skipped steps, frictionless steps, a
-/// Dang Van indicator above 1).
+/// The passage keys of `summary` and their warnings (a maximum on the window's deepest or first
+/// layer, skipped steps, frictionless steps, a Dang Van indicator above 1).
 pub fn summarise_passage(run: &PassageRun, summary: &mut Summary) {
     let figures = passage_figures(run);
+    // a maximum on the window's last layer may lie deeper; on its first, nearer the surface
+    for (f, p) in figures.iter().zip(&run.passages) {
+        let (Some(&first), Some(&last)) = (p.z.first(), p.z.last()) else {
+            continue;
+        };
+        for (name, at) in [
+            ("max-over-passage von Mises", f.max_von_mises_at_m),
+            ("tau_xz range", f.max_tau_xz_range_at_m),
+            ("Dang Van indicator", f.max_dang_van_at_m),
+        ] {
+            let Some(at) = at else { continue };
+            if p.z.len() > 1 && at[2] == last {
+                summary.warnings.push(format!(
+                    "the {name} maximum of body {} lies on the deepest layer of the passage window (z = {last:.3e} m): it may lie deeper; deepen stress.window to locate it",
+                    f.body
+                ));
+            } else if at[2] == first {
+                summary.warnings.push(format!(
+                    "the {name} maximum of body {} lies on the first layer of the passage window (z = {first:.3e} m): it may sit at the surface itself; refine with more stress.layers or a finer grid to locate it",
+                    f.body
+                ));
+            }
+        }
+    }
     for f in &figures {
         if let (Some(dv), Some(at)) = (f.max_dang_van, f.max_dang_van_at_m) {
             if dv > 1.0 {
