@@ -194,7 +194,8 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
         let per_body = crate::stress::field::field_bytes(nx * ny, s.layers, 3);
         let threads = rayon::current_num_threads() as f64;
         per_body * s.bodies.len() as f64 + threads * (nx * ny) as f64 * 20.0 * 16.0
-    }) + stress::shared_kernel_bytes(case);
+    }) + stress::shared_kernel_bytes(case)
+        + stress::worst_frame_bytes(case);
     // a transient run's passage maps: accumulators on the body-frame grid x the window layers
     let passage = stress::passage_memory(case);
     let total = elastic + dry + fields + ehl + frames + stress + passage;

@@ -164,10 +164,41 @@ pub fn shared_kernels(case: &Case) -> bool {
         && case.body1.poisson_ratio == case.body2.poisson_ratio
 }
 
+/// Whether the `[stress]` analysis of `case` is the worst-frame search of a transient run with
+/// `[fatigue]` (see `analyse`).
+fn worst_frame_search(case: &Case) -> bool {
+    case.stress.is_some() && case.fatigue.is_some() && super::transient::kinematics(case).is_some()
+}
+
+/// Bytes of the worst-frame search of a transient run with `[fatigue]` (0 otherwise): each
+/// distinct Poisson ratio's kernel spectra, kept for all frames (what fits
+/// [`DEFAULT_CACHE_BYTES`]), and a second analysis (the frame in hand beside the worst so far:
+/// per body the field of `field_bytes`).
+pub fn worst_frame_bytes(case: &Case) -> f64 {
+    let Some(spec) = case.stress.as_ref().filter(|_| worst_frame_search(case)) else {
+        return 0.0;
+    };
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let dx = (g.x_max - g.x_min) / nx as f64;
+    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let layers = spec.depths(dx, dy).len();
+    let mut nus: Vec<f64> = spec
+        .bodies
+        .iter()
+        .map(|&k| if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio })
+        .collect();
+    nus.dedup();
+    let spectra = kernel_cache_bytes(nx, ny, layers, nus.len()) as f64;
+    let second = crate::stress::field::field_bytes(nx * ny, spec.layers, 3) * spec.bodies.len() as f64;
+    spectra + second
+}
+
 /// Bytes of the kernel spectra shared by the two bodies of a steady analysis
-/// ([`shared_kernels`]; 0 otherwise), within [`DEFAULT_CACHE_BYTES`].
+/// ([`shared_kernels`]; 0 otherwise, and for the worst-frame search, which keeps its own:
+/// [`worst_frame_bytes`]), within [`DEFAULT_CACHE_BYTES`].
 pub fn shared_kernel_bytes(case: &Case) -> f64 {
-    let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case)) else {
+    let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case) && !worst_frame_search(case)) else {
         return 0.0;
     };
     let g = case.grid;

@@ -580,6 +580,39 @@ mod tests {
         assert!(t - s >= 4096.0 * 4096.0 * 12.0, "{t} vs {s}");
     }
 
+    /// A transient run with `[stress]` and `[fatigue]` searches the frames for the worst one
+    /// with each Poisson ratio's kernel spectra kept: the estimate counts them (and the second
+    /// analysis), which it did not (issue 12), and the same run without `[fatigue]` does not.
+    #[test]
+    fn memory_estimate_counts_the_worst_frame_search() {
+        let sliding = crate::case::load_file(
+            std::path::Path::new(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../examples/stress_line_sliding.toml"
+            )),
+            &[],
+        )
+        .expect("example case");
+        let mut with = groove(&["grid.nx=1024"]);
+        with.stress = sliding.stress.clone();
+        with.fatigue = sliding.fatigue;
+        assert!(with.stress.is_some() && with.fatigue.is_some());
+        let mut without = with.clone();
+        without.fatigue = None;
+        let spec = with.stress.as_ref().unwrap();
+        let dx = (with.grid.x_max - with.grid.x_min) / 1024.0;
+        let layers = spec.depths(dx, f64::INFINITY).len();
+        let spectra = crate::run::stress::kernel_cache_bytes(1024, 1, layers, 1) as f64;
+        let (w, wo) = (
+            crate::run::memory_estimate(&with).bytes,
+            crate::run::memory_estimate(&without).bytes,
+        );
+        assert!(
+            spectra > 0.0 && w - wo >= spectra,
+            "{w} vs {wo}: spectra {spectra}"
+        );
+    }
+
     /// x_p and the snapshot steps of the path form: from at step 0, to at the last step.
     #[test]
     fn path_kinematics_reach_the_ends() {
