@@ -39,9 +39,9 @@
 //! * J at cell i is -(Q_{i+1/2} - Q_{i-1/2}) / dx, Q_{face} the rule's cumulative integral of
 //!   the face flux m_face, so that dJ/dzeta matches the upwind divergence (to the rule's
 //!   accuracy): the discrete energy balance then telescopes (see [`LineEnergy`]).
-//! * In the thick inlet, where the film is more than [`UPWIND_FILM_RATIO`] times the line's
+//! * In the thick inlet, where the film is more than [`PECLET_BOUND_FILM_RATIO`] times the line's
 //!   thinnest, a column's conduction across the film is raised so that no point's Peclet number
-//!   c |J| h dzeta / k exceeds [`UPWIND_PECLET`] ([`cell_conductivity`]). There, where a reverse
+//!   c |J| h dzeta / k exceeds [`MAX_CROSS_FILM_PECLET`] ([`cell_conductivity`]). There, where a reverse
 //!   flow turns, J is the x-difference of column fluxes over dx and reaches Peclet numbers of
 //!   ~160 on fine grids; with the oil's conductivity the collocated c J dT/dzeta oscillated
 //!   across the film (measured: -900 K at the first cells of the Table 3.7 line at 1024 cells,
@@ -578,30 +578,30 @@ fn face_fluxes(
 
 /// The largest cross-film Peclet number c |J| h dzeta / k of a collocation point (dzeta the
 /// local spacing of the points) that the energy equation keeps where the film is more than
-/// [`UPWIND_FILM_RATIO`] times the line's thinnest (the classical bound of central
+/// [`PECLET_BOUND_FILM_RATIO`] times the line's thinnest (the classical bound of central
 /// differences); see [`cell_conductivity`].
-pub const UPWIND_PECLET: f64 = 2.0;
+pub const MAX_CROSS_FILM_PECLET: f64 = 2.0;
 
 /// The cross-film conduction is raised only where the film is more than this many times the
 /// line's thinnest: the thick inlet, where the collocation oscillated.
-pub const UPWIND_FILM_RATIO: f64 = 10.0;
+pub const PECLET_BOUND_FILM_RATIO: f64 = 10.0;
 
 /// The conductivity (W/(m K)) across the film of a cell of film `h` (m) on a line whose thinnest
 /// film is `h_min`, with the cross-film mass fluxes `j` at its points (kg/(m^2 s)): the oil's
-/// `kf`, raised where the film is more than [`UPWIND_FILM_RATIO`] times the thinnest to
-/// c max_k |J_k| h dzeta_k / [`UPWIND_PECLET`] when that is larger (dzeta_k the half-distance of
-/// point k's neighbours), so that no point's Peclet number exceeds [`UPWIND_PECLET`]. An
+/// `kf`, raised where the film is more than [`PECLET_BOUND_FILM_RATIO`] times the thinnest to
+/// c max_k |J_k| h dzeta_k / [`MAX_CROSS_FILM_PECLET`] when that is larger (dzeta_k the half-distance of
+/// point k's neighbours), so that no point's Peclet number exceeds [`MAX_CROSS_FILM_PECLET`]. An
 /// artificial conduction, uniform across the column: its flux telescopes with the rule's
 /// weights like the oil's, so the energy balance stays exact ([`line_energy`] uses the same
 /// conductivity; the heat it carries to the walls is counted as conducted).
 pub fn cell_conductivity(rule: &Lobatto, kf: f64, cp: f64, h: f64, h_min: f64, j: &[f64]) -> f64 {
-    if !(h > UPWIND_FILM_RATIO * h_min) {
+    if !(h > PECLET_BOUND_FILM_RATIO * h_min) {
         return kf;
     }
     let nz = rule.len();
     (1..nz - 1).fold(kf, |k, p| {
         let dz = 0.5 * (rule.points[p + 1] - rule.points[p - 1]);
-        k.max(cp * j[p].abs() * h * dz / UPWIND_PECLET)
+        k.max(cp * j[p].abs() * h * dz / MAX_CROSS_FILM_PECLET)
     })
 }
 
