@@ -164,6 +164,16 @@ pub fn shared_kernels(case: &Case) -> bool {
         && case.body1.poisson_ratio == case.body2.poisson_ratio
 }
 
+/// The cells of `case`'s grid and their size (m; dy infinite on an infinite line), as the
+/// memory estimates need them before a grid exists.
+fn case_cells(case: &Case) -> (usize, usize, f64, f64) {
+    let g = case.grid;
+    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
+    let dx = (g.x_max - g.x_min) / nx as f64;
+    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    (nx, ny, dx, dy)
+}
+
 /// Whether the `[stress]` analysis of `case` is the worst-frame search of a transient run with
 /// `[fatigue]` (see `analyse`).
 fn worst_frame_search(case: &Case) -> bool {
@@ -178,10 +188,7 @@ pub fn worst_frame_bytes(case: &Case) -> f64 {
     let Some(spec) = case.stress.as_ref().filter(|_| worst_frame_search(case)) else {
         return 0.0;
     };
-    let g = case.grid;
-    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
-    let dx = (g.x_max - g.x_min) / nx as f64;
-    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let (nx, ny, dx, dy) = case_cells(case);
     let layers = spec.depths(dx, dy).len();
     let mut nus: Vec<f64> = spec
         .bodies
@@ -201,10 +208,7 @@ pub fn shared_kernel_bytes(case: &Case) -> f64 {
     let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case) && !worst_frame_search(case)) else {
         return 0.0;
     };
-    let g = case.grid;
-    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
-    let dx = (g.x_max - g.x_min) / nx as f64;
-    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let (nx, ny, dx, dy) = case_cells(case);
     kernel_cache_bytes(nx, ny, spec.depths(dx, dy).len(), 1) as f64
 }
 
@@ -336,10 +340,7 @@ pub fn passage_memory(case: &Case) -> f64 {
     else {
         return 0.0;
     };
-    let g = case.grid;
-    let (nx, ny) = (g.nx.max(1), g.ny.max(1));
-    let dx = (g.x_max - g.x_min) / nx as f64;
-    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let (nx, ny, dx, dy) = case_cells(case);
     let layers = spec.window_depths(dx, dy).len();
     let dv = case.fatigue.is_some_and(|f| f.dang_van.is_some());
     let duration = kin.steps as f64 * kin.dt;

@@ -426,17 +426,10 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                 start[k] = eta[k] * factors[k];
             }
         }
-        let mut s = shear_thinning_profile_from(
-            rule,
-            laws,
-            &col,
-            p,
-            ti,
-            &eta,
-            &rho,
-            opts.shear,
-            warm.then_some(start.as_slice()),
-        )?;
+        let profile = |col: &Column, from: Option<&[f64]>| {
+            shear_thinning_profile_from(rule, laws, col, p, ti, &eta, &rho, opts.shear, from)
+        };
+        let mut s = profile(&col, warm.then_some(start.as_slice()))?;
         // a flux-driven column: the pressure gradient that carries the target pressure-flow
         // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
         // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved twice more).
@@ -455,17 +448,7 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                     break;
                 }
                 col.dpdx = g;
-                s = shear_thinning_profile_from(
-                    rule,
-                    laws,
-                    &col,
-                    p,
-                    ti,
-                    &eta,
-                    &rho,
-                    opts.shear,
-                    Some(&s.eta_eff),
-                )?;
+                s = profile(&col, Some(&s.eta_eff))?;
             }
         }
         for k in 0..nz {
