@@ -791,6 +791,41 @@ impl PySolution {
         Ok(Some(d))
     }
 
+    /// `[stress]` runs: the content of `stress.npz` as a dict: `x` (nx), `y` (ny), `z` (nz, m),
+    /// and for each computed body k `sxx_k`, `syy_k`, `szz_k`, `syz_k`, `sxz_k`, `sxy_k`,
+    /// `von_mises_k`, `tresca_k` (Pa, float32 arrays shaped (nz, ny, nx); copies), plus
+    /// `x_p_m` (the kept frame a transient run's stress is of, else None) and `with_traction`.
+    /// None without `[stress]`.
+    #[getter]
+    fn stress<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(a) = self.sol.stress.as_ref() else {
+            return Ok(None);
+        };
+        let g = &a.grid;
+        let d = PyDict::new(py);
+        let x: Vec<f64> = (0..g.nx).map(|i| g.x(i)).collect();
+        let y: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
+        d.set_item("x", PyArray1::from_vec(py, x))?;
+        d.set_item("y", PyArray1::from_vec(py, y))?;
+        let z = a.bodies.first().map(|b| b.field.z.clone()).unwrap_or_default();
+        let nz = z.len();
+        d.set_item("z", PyArray1::from_vec(py, z))?;
+        for b in &a.bodies {
+            let named = ehl::stress::kernel::COMPONENTS
+                .iter()
+                .zip(b.field.components.iter())
+                .map(|(n, v)| (*n, v))
+                .chain([("von_mises", &b.von_mises), ("tresca", &b.max_shear)]);
+            for (name, v) in named {
+                let arr = PyArray1::from_slice(py, v).reshape([nz, g.ny, g.nx])?;
+                d.set_item(format!("{name}_{}", b.body), arr)?;
+            }
+        }
+        d.set_item("x_p_m", a.step.map(|s| s.1))?;
+        d.set_item("with_traction", a.with_traction)?;
+        Ok(Some(d))
+    }
+
     /// Transient runs: `timeline.csv` as a dict of columns (NumPy arrays, one entry per step,
     /// step 0 the steady start): `step`, `time_s`, `x_p_m`, `max_pressure_pa`, `min_film_m`,
     /// `central_film_m`, `friction_coefficient` (NaN where not computed), `converged`, ...;

@@ -229,6 +229,26 @@ def test_thermal_solution_has_temperatures():
     assert ehl.solve(small_ehl(), progress=False).temperature is None
 
 
+def test_stress_solution_has_the_fields_of_stress_npz():
+    c = ehl.Case.from_file(example("stress_line_sliding.toml"))
+    c.set("grid.nx", 128)
+    sol = ehl.solve(c, progress=False)
+    assert sol.converged
+    s = sol.stress
+    nz = len(s["z"])
+    assert c.get("stress.body") == "both"
+    for body in [1, 2]:
+        for name in ["sxx", "syy", "szz", "syz", "sxz", "sxy", "von_mises", "tresca"]:
+            a = s[f"{name}_{body}"]
+            assert a.shape == (nz, 1, 128) and a.dtype == np.float32, name
+    # the summary's maximum is the field's (float32 storage: 1e-6 relative)
+    vm = max(float(np.max(s[k])) for k in s if k.startswith("von_mises_"))
+    assert vm == pytest.approx(sol.summary["max_von_mises_pa"], rel=1e-6)
+    assert s["x"].shape == (128,) and s["x_p_m"] is None and s["with_traction"]
+    # a case without [stress] has none
+    assert ehl.solve(small_ehl(), progress=False).stress is None
+
+
 def test_not_converged_returns_a_solution():
     c = small_ehl()
     c.set("solver.max_iterations", 1)

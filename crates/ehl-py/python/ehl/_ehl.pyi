@@ -107,6 +107,13 @@ class Solution:
         solved), ``film_section`` (nz, nx, K) and ``section_z`` (nz, nx, m) across the film along
         the centre grid line at ``section_y`` (m), and ``inlet`` (K); None when isothermal."""
     @property
+    def stress(self) -> Optional[Dict[str, Any]]:
+        """``[stress]`` runs: what ``stress.npz`` holds: ``x`` (nx), ``y`` (ny), ``z`` (nz) in m,
+        and for each computed body k ``sxx_k``, ``syy_k``, ``szz_k``, ``syz_k``, ``sxz_k``,
+        ``sxy_k``, ``von_mises_k``, ``tresca_k`` in Pa (float32, (nz, ny, nx), copies; body
+        frame, z depth, tension positive), ``x_p_m`` (m: the kept frame of a transient run,
+        else None) and ``with_traction``; None without ``[stress]``."""
+    @property
     def timeline(self) -> Optional[Dict[str, npt.NDArray[Any]]]:
         """Transient runs: the columns of ``timeline.csv`` (``step``, ``time_s``, ``x_p_m``,
         ``max_pressure_pa``, ``min_film_m``, ``central_film_m``, ``friction_coefficient``
