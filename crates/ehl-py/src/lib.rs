@@ -548,6 +548,16 @@ impl PyCase {
         self.clone()
     }
 
+    /// Pickling (e.g. for a process pool): the case file's text, its name and the overrides;
+    /// unpickling parses and validates them again (a height map is read again from its path).
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (String, String, Vec<String>))> {
+        let f = slf.py().import("ehl._ehl")?.getattr("_case_from_state")?;
+        let c = slf.borrow();
+        Ok((f, (c.text.clone(), c.file.clone(), c.overrides.clone())))
+    }
+
     /// The case file as given (or `<string>`, `<dict>`).
     #[getter]
     fn file(&self) -> &str {
@@ -1096,8 +1106,20 @@ fn _solve(
     Ok(PySolution { case, sol })
 }
 
+/// The inverse of `Case.__reduce__`: the case of a file's text, its name and the overrides.
+#[pyfunction]
+fn _case_from_state(
+    py: Python<'_>,
+    text: String,
+    file: String,
+    overrides: Vec<String>,
+) -> PyResult<PyCase> {
+    PyCase::parse(py, text, file, overrides)
+}
+
 #[pymodule]
 fn _ehl(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_case_from_state, m)?)?;
     m.add_class::<PyCase>()?;
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(_solve, m)?)?;

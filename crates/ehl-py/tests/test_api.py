@@ -229,6 +229,18 @@ def test_thermal_solution_has_temperatures():
     assert ehl.solve(small_ehl(), progress=False).temperature is None
 
 
+def test_a_case_pickles_with_its_overrides():
+    import pickle
+
+    c = ehl.Case.from_file(example("ehl_thesis_ch2_roller.toml"))
+    c.set("grid.nx", 40)
+    c.set("load.force", 5000)
+    d = pickle.loads(pickle.dumps(c))
+    assert d.to_dict() == c.to_dict() and d.file == c.file
+    assert d.get("grid.nx") == 40 and d.get("load.force") == 5000
+    assert d.check() == c.check()
+
+
 def test_stress_solution_has_the_fields_of_stress_npz():
     c = ehl.Case.from_file(example("stress_line_sliding.toml"))
     c.set("grid.nx", 128)

@@ -3,7 +3,7 @@ kg/m^3, rad)."""
 
 import os
 import pathlib
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -52,6 +52,9 @@ class Case:
     def copy(self) -> "Case": ...
     def __copy__(self) -> "Case": ...
     def __deepcopy__(self, memo: Any) -> "Case": ...
+    def __reduce__(self) -> Tuple[Any, Tuple[str, str, List[str]]]:
+        """Pickling (process pools): the file's text, its name and the overrides; unpickling
+        validates them again."""
     @property
     def file(self) -> str: ...
     @property
