@@ -235,6 +235,42 @@ fn dot_portable(a: &[f32], b: &[f64]) -> f64 {
     t
 }
 
+/// Solves a small dense system A x = b in place, in double precision (Gaussian elimination with
+/// partial pivoting; A row-major n x n, overwritten; b becomes x); false if A is singular or
+/// not finite. For the few-unknown systems of the film's Newton iteration across z and of
+/// Anderson mixing ([`super::anderson`]), where [`DenseLu`]'s single-precision factors would be
+/// too coarse (a Newton iteration to 1e-10) and its blocking pointless.
+pub fn solve_small(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
+            .unwrap();
+        if !(a[p * n + c].abs() > 0.0 && a[p * n + c].is_finite()) {
+            return false;
+        }
+        if p != c {
+            for j in 0..n {
+                a.swap(c * n + j, p * n + j);
+            }
+            b.swap(c, p);
+        }
+        for r in c + 1..n {
+            let f = a[r * n + c] / a[c * n + c];
+            if f != 0.0 {
+                for j in c..n {
+                    a[r * n + j] -= f * a[c * n + j];
+                }
+                b[r] -= f * b[c];
+            }
+        }
+    }
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|j| a[c * n + j] * b[j]).sum();
+        b[c] = (b[c] - s) / a[c * n + c];
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

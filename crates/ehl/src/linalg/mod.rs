@@ -1,9 +1,10 @@
 //! Generic linear algebra of the solvers, free of physics: nothing here knows the Reynolds
 //! equation, the elastic kernel or the case file.
 //!
+//! * [`anderson`]: Anderson acceleration of a fixed-point iteration (the film temperature);
 //! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
 //! * [`dense`]: dense blocked LU with partial pivoting (the preconditioner of a transient
-//!   infinite line contact, reused over time steps);
+//!   infinite line contact, reused over time steps), and a small double-precision solve;
 //! * [`multigrid`]: line-relaxation aggregation multigrid for a local line operator (the Newton
 //!   preconditioner on 2D grids);
 //! * [`gmres`]: restarted, flexible, right-preconditioned GMRES (the Newton steps).
@@ -11,6 +12,7 @@
 //! The discrete Reynolds operator that these solve is [`crate::reynolds`]; the EHL
 //! Newton-Krylov solver that couples them to the elastic operator is [`crate::ehl`].
 
+pub mod anderson;
 pub mod banded;
 pub mod dense;
 pub mod gmres;

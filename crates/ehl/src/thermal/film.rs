@@ -47,6 +47,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::collocation::Lobatto;
+use crate::linalg::dense::solve_small;
 
 /// Errors of the film computations (no result exists).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -366,40 +367,6 @@ pub struct ShearThinningProfile {
     pub converged: bool,
 }
 
-/// Solve a small dense system in place (Gaussian elimination with partial pivoting); false if
-/// singular. Not `crate::linalg::dense::DenseLu`: that one keeps its factors in single
-/// precision (a preconditioner), too coarse for a Newton iteration to 1e-10 on nz <= 33 points.
-pub(crate) fn dense_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    for c in 0..n {
-        let p = (c..n)
-            .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
-            .unwrap();
-        if !(a[p * n + c].abs() > 0.0 && a[p * n + c].is_finite()) {
-            return false;
-        }
-        if p != c {
-            for j in 0..n {
-                a.swap(c * n + j, p * n + j);
-            }
-            b.swap(c, p);
-        }
-        for r in c + 1..n {
-            let f = a[r * n + c] / a[c * n + c];
-            if f != 0.0 {
-                for j in c..n {
-                    a[r * n + j] -= f * a[c * n + j];
-                }
-                b[r] -= f * b[c];
-            }
-        }
-    }
-    for c in (0..n).rev() {
-        let s: f64 = (c + 1..n).map(|j| a[c * n + j] * b[j]).sum();
-        b[c] = (b[c] - s) / a[c * n + c];
-    }
-    true
-}
-
 /// Velocity profile of a generalized-Newtonian column: the effective viscosity at each point
 /// depends on the local shear rate gamma = |tau| / eta_eff, which depends on the whole profile.
 /// Starts from the low-shear viscosity; [`shear_thinning_profile_from`] takes a start.
@@ -522,7 +489,7 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
             }
         }
         delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
-        if !dense_solve(&mut jac, &mut delta, n) {
+        if !solve_small(&mut jac, &mut delta, n) {
             // singular Jacobian: a plain fixed-point step y <- ln eta_law
             delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
         }

@@ -41,14 +41,14 @@
 //!   accuracy): the discrete energy balance then telescopes (see [`LineEnergy`]).
 //! * In the thick inlet, where the film is more than [`PECLET_BOUND_FILM_RATIO`] times the line's
 //!   thinnest, a column's conduction across the film is raised so that no point's Peclet number
-//!   c |J| h dzeta / k exceeds [`MAX_CROSS_FILM_PECLET`] ([`cell_conductivity`]). There, where a reverse
-//!   flow turns, J is the x-difference of column fluxes over dx and reaches Peclet numbers of
-//!   ~160 on fine grids; with the oil's conductivity the collocated c J dT/dzeta oscillated
+//!   c |J| h dzeta / k exceeds [`MAX_CROSS_FILM_PECLET`] ([`cell_conductivity`]). There, where a
+//!   reverse flow turns, J is the x-difference of column fluxes over dx and reaches Peclet numbers
+//!   of ~160 on fine grids; with the oil's conductivity the collocated c J dT/dzeta oscillated
 //!   across the film (measured: -900 K at the first cells of the Table 3.7 line at 1024 cells,
-//!   dx = 2 um, and on the thesis roller at 256 x 256: the run ended with a negative density).
-//!   The artificial conduction is uniform across the column, so the balance still telescopes; a
-//!   first-order upwind difference across z, tried first, stabilised it as well but put the
-//!   balance of a pure-rolling line 0.6 % off.
+//!   dx = 2 um, and on the thesis roller at 256 x 256: the run ended with a negative density). The
+//!   artificial conduction is uniform across the column, so the balance still telescopes; a
+//!   first-order upwind difference across z, tried first, stabilised it as well but put the balance
+//!   of a pure-rolling line 0.6 % off.
 //! * The v dT/dy term (and the y-part of J) couples the lines: it is not modelled here; a
 //!   caller on a 2D grid can pass it, lagged, through [`Line::extra_source`].
 //! * Unknowns theta = T - T_in (a line with no heating whose surfaces and inlet are at T_in
@@ -60,9 +60,10 @@
 //! # Fixed point
 //!
 //! The laws depend on T: [`solve_line`] iterates laws -> profile ([`super::film`], with the
-//! shear-thinning Newton iteration per column) -> heating -> linear solve, with relaxation,
-//! until the largest temperature change is below the tolerance. [`solve_lines`] runs lines in
-//! parallel (rayon).
+//! shear-thinning Newton iteration per column, started from the column's last solution) ->
+//! heating -> linear solve, with relaxation or Anderson mixing ([`LineOptions::anderson`],
+//! [`crate::linalg::anderson`]), until the largest temperature change is below the tolerance.
+//! [`solve_lines`] runs lines in parallel (rayon).
 //!
 //! # Signs and units
 //!
@@ -76,6 +77,7 @@ use super::collocation::Lobatto;
 use super::film::{
     shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, ShearOptions,
 };
+use crate::linalg::anderson::Anderson;
 use crate::linalg::banded::Banded;
 use rayon::prelude::*;
 
@@ -570,13 +572,14 @@ pub const MAX_CROSS_FILM_PECLET: f64 = 2.0;
 pub const PECLET_BOUND_FILM_RATIO: f64 = 10.0;
 
 /// The conductivity (W/(m K)) across the film of a cell of film `h` (m) on a line whose thinnest
-/// film is `h_min`, with the cross-film mass fluxes `j` at its points (kg/(m^2 s)): the oil's
-/// `kf`, raised where the film is more than [`PECLET_BOUND_FILM_RATIO`] times the thinnest to
-/// c max_k |J_k| h dzeta_k / [`MAX_CROSS_FILM_PECLET`] when that is larger (dzeta_k the half-distance of
-/// point k's neighbours), so that no point's Peclet number exceeds [`MAX_CROSS_FILM_PECLET`]. An
-/// artificial conduction, uniform across the column: its flux telescopes with the rule's
-/// weights like the oil's, so the energy balance stays exact ([`line_energy`] uses the same
-/// conductivity; the heat it carries to the walls is counted as conducted).
+/// film is `h_min`, with the cross-film mass fluxes `j` at its points (kg/(m^2 s)): the oil's `kf`,
+/// raised where the film is more than [`PECLET_BOUND_FILM_RATIO`] times the thinnest to
+/// c max_k |J_k| h dzeta_k / [`MAX_CROSS_FILM_PECLET`] when that is larger (c in J/(kg K); dzeta_k
+/// the half-distance of point k's neighbours), so that no point's Peclet number exceeds
+/// [`MAX_CROSS_FILM_PECLET`]. An artificial conduction, uniform across the column: its flux
+/// telescopes with the rule's weights like the oil's, so the energy balance stays exact
+/// ([`line_energy`] uses the same conductivity; the heat it carries to the walls is counted as
+/// conducted).
 pub fn cell_conductivity(rule: &Lobatto, kf: f64, cp: f64, h: f64, h_min: f64, j: &[f64]) -> f64 {
     if !(h > PECLET_BOUND_FILM_RATIO * h_min) {
         return kf;
@@ -935,85 +938,6 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
         for (a, b) in t.iter_mut().zip(next) {
             *a = b.max(floor);
         }
-    }
-}
-
-/// Anderson mixing (type II, Walker & Ni 2011) of a fixed point x = G(x) with residual
-/// f = G(x) - x: from the differences of the last m iterates and residuals,
-/// gamma = argmin |f_k - dF gamma|, x_{k+1} = x_k + beta f_k - (dX + beta dF) gamma. With m = 0
-/// (or an empty history) the relaxed step x_k + beta f_k.
-struct Anderson {
-    depth: usize,
-    last: Option<(Vec<f64>, Vec<f64>)>,
-    dx: std::collections::VecDeque<Vec<f64>>,
-    df: std::collections::VecDeque<Vec<f64>>,
-}
-
-impl Anderson {
-    fn new(depth: usize) -> Self {
-        Anderson {
-            depth,
-            last: None,
-            dx: Default::default(),
-            df: Default::default(),
-        }
-    }
-
-    fn clear(&mut self) {
-        self.last = None;
-        self.dx.clear();
-        self.df.clear();
-    }
-
-    fn next(&mut self, x: &[f64], f: &[f64], beta: f64) -> Vec<f64> {
-        let mut out: Vec<f64> = x.iter().zip(f).map(|(a, b)| a + beta * b).collect();
-        if self.depth == 0 {
-            return out;
-        }
-        if let Some((xl, fl)) = self.last.take() {
-            self.dx
-                .push_back(x.iter().zip(&xl).map(|(a, b)| a - b).collect());
-            self.df
-                .push_back(f.iter().zip(&fl).map(|(a, b)| a - b).collect());
-            if self.dx.len() > self.depth {
-                self.dx.pop_front();
-                self.df.pop_front();
-            }
-        }
-        self.last = Some((x.to_vec(), f.to_vec()));
-        let m = self.df.len();
-        if m == 0 {
-            return out;
-        }
-        // normal equations (dF^T dF + eps) gamma = dF^T f, eps a relative Tikhonov term that
-        // keeps nearly dependent differences from blowing gamma up
-        let mut a = vec![0.0; m * m];
-        let mut b = vec![0.0; m];
-        for i in 0..m {
-            for j in 0..=i {
-                let d: f64 = self.df[i].iter().zip(&self.df[j]).map(|(p, q)| p * q).sum();
-                a[i * m + j] = d;
-                a[j * m + i] = d;
-            }
-            b[i] = self.df[i].iter().zip(f).map(|(p, q)| p * q).sum();
-        }
-        let scale = (0..m).fold(0.0f64, |s, i| s.max(a[i * m + i]));
-        if !(scale > 0.0 && scale.is_finite()) {
-            return out;
-        }
-        for i in 0..m {
-            a[i * m + i] += 1e-10 * scale;
-        }
-        if !super::film::dense_solve(&mut a, &mut b, m) || b.iter().any(|g| !g.is_finite()) {
-            self.clear();
-            return out;
-        }
-        for (i, g) in b.iter().enumerate() {
-            for ((o, dx), df) in out.iter_mut().zip(&self.dx[i]).zip(&self.df[i]) {
-                *o -= g * (dx + beta * df);
-            }
-        }
-        out
     }
 }
 
@@ -1436,40 +1360,6 @@ mod tests {
             for t in &s.t {
                 assert_eq!(*t, T0);
             }
-        }
-    }
-
-    /// Anderson mixing on a linear fixed point x = M x + c (M diagonal, 40 contractions spread
-    /// over 0 to 0.98, exact solution c / (1 - m)): the plain relaxed iteration (beta 0.4, the
-    /// film's) contracts by 0.992 per step and needs ~3000 steps to 1e-10; depth 4 (measured:
-    /// 216; a GMRES(4)-like rate on 40 distinct eigenvalues) must be at least 5x faster, and
-    /// both must land on the exact point.
-    #[test]
-    fn anderson_mixing_accelerates_a_linear_fixed_point() {
-        let n = 40;
-        let m: Vec<f64> = (0..n).map(|i| 0.98 * i as f64 / (n - 1) as f64).collect();
-        let c: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64).collect();
-        let exact: Vec<f64> = m.iter().zip(&c).map(|(m, c)| c / (1.0 - m)).collect();
-        let run = |depth: usize| {
-            let mut mix = Anderson::new(depth);
-            let mut x = vec![0.0; n];
-            for k in 1..=5000 {
-                let f: Vec<f64> = (0..n).map(|i| m[i] * x[i] + c[i] - x[i]).collect();
-                if f.iter().fold(0.0f64, |a, v| a.max(v.abs())) < 1e-10 {
-                    return (k, x);
-                }
-                x = mix.next(&x, &f, 0.4);
-            }
-            (usize::MAX, x)
-        };
-        let (fast, xa) = run(4);
-        let (slow, xp) = run(0);
-        assert!(
-            slow > 2000 && 5 * fast < slow,
-            "Anderson {fast}, plain {slow}"
-        );
-        for ((a, p), e) in xa.iter().zip(&xp).zip(&exact) {
-            assert!((a - e).abs() < 1e-8 * e && (p - e).abs() < 1e-8 * e);
         }
     }
 }
