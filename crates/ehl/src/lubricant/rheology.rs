@@ -128,8 +128,10 @@ pub fn effective_viscosity(model: &Rheology, eta: f64, shear_rate: f64, p: f64) 
 /// * Newtonian: (ln eta, 0);
 /// * Carreau (thesis eq. 2.15): ln eta_eff = ln eta + (n - 1)/2 ln(1 + x^2), x = eta gamma_dot /
 ///   G_f, s = (n - 1) x^2 / (1 + x^2);
-/// * Eyring: ln eta_eff = ln eta + ln(asinh(x) / x), x = eta gamma_dot / tau_0,
-///   s = x / (sqrt(1 + x^2) asinh x) - 1.
+/// * Eyring (Eyring 1936; Johnson & Tevaarwerk 1977): ln eta_eff = ln eta + ln(asinh(x) / x),
+///   x = eta gamma_dot / tau_0, s = x / (sqrt(1 + x^2) asinh x) - 1.
+///
+/// Units: eta, eta_eff in Pa s, gamma_dot in 1/s, G_f and tau_0 in Pa; s dimensionless.
 ///
 /// x is formed as ln x, so nothing overflows however viscous the film: at ln x = 700 (where
 /// x itself overflows) Carreau gives ln eta + (n - 1) ln x. Same values as
