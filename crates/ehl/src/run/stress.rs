@@ -174,6 +174,21 @@ fn case_cells(case: &Case) -> (usize, usize, f64, f64) {
     (nx, ny, dx, dy)
 }
 
+/// How many distinct Poisson ratios the bodies of `[stress]` have (each has its own kernel
+/// spectra); 0 without `[stress]`.
+fn distinct_poisson_ratios(case: &Case) -> usize {
+    let Some(spec) = case.stress.as_ref() else {
+        return 0;
+    };
+    let mut nus: Vec<f64> = spec
+        .bodies
+        .iter()
+        .map(|&k| if k == 2 { case.body2.poisson_ratio } else { case.body1.poisson_ratio })
+        .collect();
+    nus.dedup();
+    nus.len()
+}
+
 /// Whether the `[stress]` analysis of `case` is the worst-frame search of a transient run with
 /// `[fatigue]` (see `analyse`).
 fn worst_frame_search(case: &Case) -> bool {
@@ -190,14 +205,8 @@ pub fn worst_frame_bytes(case: &Case) -> f64 {
     };
     let (nx, ny, dx, dy) = case_cells(case);
     let layers = spec.depths(dx, dy).len();
-    let mut nus: Vec<f64> = spec
-        .bodies
-        .iter()
-        .map(|&k| if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio })
-        .collect();
-    nus.dedup();
-    let spectra = kernel_cache_bytes(nx, ny, layers, nus.len()) as f64;
-    let second = crate::stress::field::field_bytes(nx * ny, spec.layers, 3) * spec.bodies.len() as f64;
+    let spectra = kernel_cache_bytes(nx, ny, layers, distinct_poisson_ratios(case)) as f64;
+    let second = crate::stress::field::field_bytes(nx * ny, layers, 3) * spec.bodies.len() as f64;
     spectra + second
 }
 
@@ -354,15 +363,7 @@ pub fn passage_memory(case: &Case) -> f64 {
         })
         .sum::<f64>()
         + crate::stress::field::field_bytes(nx * ny, layers, 0)
-        + kernel_cache_bytes(nx, ny, layers, {
-            let mut nus: Vec<f64> = spec
-                .bodies
-                .iter()
-                .map(|&k| if k == 2 { case.body2.poisson_ratio } else { case.body1.poisson_ratio })
-                .collect();
-            nus.dedup();
-            nus.len()
-        }) as f64
+        + kernel_cache_bytes(nx, ny, layers, distinct_poisson_ratios(case)) as f64
         + if dv {
             let dx_t = kin.dt;
             let every = passage_every(dx, dx_t, [m.u1(), m.u2()]);
