@@ -220,25 +220,29 @@ fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize) -> (f64, f64) {
 }
 
 /// Amplitude reduction of waviness in pure rolling (Venner et al. 1997): short waves pass the
-/// contact nearly undeformed, long ones are flattened, and A_d / A_i falls monotonically with
-/// nabla = (lambda/b) M^(3/4) / L^(1/2). Asserted here: at M = 20, L = 10 on 512 cells (one cell
-/// per step), A_d / A_i > 0.7 at nabla = 2 (measured 0.78; the fit gives 0.68), < 0.3 at
-/// nabla = 10 (measured 0.19; fit 0.175) and falling between them. A missing or wrong squeeze
-/// term breaks this: a film that follows each frozen gap flattens every wavelength alike.
-/// The comparison with the fit over nabla = 1 .. 10 at two (M, L) pairs is the ignored
-/// `waviness_amplitude_reduction_probe` (docs/pits.md, section "Amplitude reduction").
+/// contact nearly undeformed, long ones are flattened, and at high load A_d / A_i is one function
+/// of nabla = (lambda/b) M^(3/4) / L^(1/2), fitted as 1 / (1 + 0.17 nabla + 0.03 nabla^2).
+/// Checked at M = 100, L = 10 (a heavily loaded, strongly piezoviscous contact, where the
+/// collapse onto nabla holds: M = 200 gives the same figures) on 1024 cells, one cell per step,
+/// at nabla = 2, 4 and 10: within 3 % of the fit. Measured 0.683 / 0.466 / 0.1725 against
+/// 0.685 / 0.463 / 0.175 (0.3 / 0.6 / 1.7 %); on 2048 cells 0.4635 and 0.1705 at nabla 4 and 10,
+/// so up to 1.2 % of the gap is grid error and the rest is within a fit's own scatter. A missing
+/// or wrong squeeze term fails this by far: a film that follows each frozen gap flattens every
+/// wavelength alike. At lower load (M = 10-20) or L = 5 the ratios lie 7-30 % above the fit
+/// (docs/pits.md, "Amplitude reduction"; the ignored `waviness_amplitude_reduction_probe`).
 #[test]
-fn waviness_amplitude_falls_with_nabla() {
-    let (m, l) = (20.0f64, 10.0f64);
-    let lam = |nabla: f64| nabla * l.sqrt() / m.powf(0.75);
-    let (_, short) = amplitude_ratio(m, l, lam(2.0), 512);
-    let (_, mid) = amplitude_ratio(m, l, lam(4.0), 512);
-    let (_, long) = amplitude_ratio(m, l, lam(10.0), 512);
-    println!("A_d/A_i: nabla 2: {short:.4}, 4: {mid:.4}, 10: {long:.4}");
-    assert!(
-        short > 0.7 && long < 0.3 && short > mid && mid > long,
-        "{short} {mid} {long}"
-    );
+fn waviness_amplitude_reduction_follows_venner_at_high_load() {
+    let (m, l) = (100.0f64, 10.0f64);
+    for nabla in [2.0, 4.0, 10.0] {
+        let lambda_b = nabla * l.sqrt() / m.powf(0.75);
+        let (nb, ratio) = amplitude_ratio(m, l, lambda_b, 1024);
+        let fit = ehl::reference::waviness::line_amplitude_ratio(nb);
+        println!("nabla {nb:.2}: A_d/A_i {ratio:.4}, fit {fit:.4}");
+        assert!(
+            (ratio / fit - 1.0).abs() < 0.03,
+            "nabla {nb}: A_d/A_i {ratio} against the fit's {fit}"
+        );
+    }
 }
 
 #[test]
@@ -248,8 +252,23 @@ fn waviness_amplitude_reduction_probe() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(512);
-    for &(m, l) in &[(20.0, 10.0), (10.0, 5.0)] {
-        for &nabla in &[1.0, 2.0, 4.0, 10.0] {
+    // ML = "M,L;M,L" (default the two pairs of docs/pits.md), NABLA = "1,2,4,10"
+    let pairs: Vec<(f64, f64)> = match std::env::var("ML") {
+        Ok(v) => v
+            .split(';')
+            .map(|p| {
+                let (m, l) = p.split_once(',').expect("ML = \"M,L;M,L\"");
+                (m.trim().parse().unwrap(), l.trim().parse().unwrap())
+            })
+            .collect(),
+        Err(_) => vec![(20.0, 10.0), (10.0, 5.0)],
+    };
+    let nablas: Vec<f64> = match std::env::var("NABLA") {
+        Ok(v) => v.split(',').map(|s| s.trim().parse().unwrap()).collect(),
+        Err(_) => vec![1.0, 2.0, 4.0, 10.0],
+    };
+    for &(m, l) in &pairs {
+        for &nabla in &nablas {
             let lambda_b = nabla * (l as f64).sqrt() / (m as f64).powf(0.75);
             let t = std::time::Instant::now();
             let (nb, ratio) = amplitude_ratio(m, l, lambda_b, nx);
