@@ -16,9 +16,10 @@
 //!   elastic wedge coupling within a band along x, see `line_band`) solved by one V-cycle of
 //!   line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur complement;
 //! * the time steps of a transient infinite line contact (ny == 1) are preconditioned instead
-//!   by a dense LU of the exact Jacobian, factored once and kept over Newton steps and time
-//!   steps until the GMRES iterations it costs outweigh a new factorisation (see
-//!   `dense_solve`, `system::DensePreconditioner`); their linear solves then go to 1e-3 of
+//!   by the exact Jacobian held as a hierarchical (HODLR) approximate inverse, factored once
+//!   and kept over Newton steps and time steps until the GMRES iterations it costs outweigh a
+//!   new factorisation (see `dense_solve`, `system::DensePreconditioner`); their linear solves
+//!   then go to 1e-3 of
 //!   what the tolerance asks, so that one Newton step usually ends the time step;
 //! * grid sequencing: every solve starts on grids 2, 4, ... times coarser (from the given start
 //!   averaged onto them), each level's solution interpolated as the next level's start;
@@ -657,19 +658,21 @@ const DENSE_STALE_MAX: usize = 20;
 
 /// A lagged dense preconditioner is refactored before the next Newton step once the GMRES
 /// iterations it has cost beyond two per solve (what fresh factors take) add up to more than
-/// this: the rent-or-buy rule, with the price of a factorisation in preconditioner
-/// applications (measured on the 2-core machine: 1025 unknowns 35 ms against 0.36 ms, 2049
-/// 260 ms against 2.5 ms, about 100 at both sizes). Transient line, 200 steps of 2048 cells:
-/// 7 factorisations and 5.3 GMRES iterations per step; a budget of 30 gave 14 and 4.4, one
-/// of 300 gave 4 and 7.1, at about the same time.
-const DENSE_REFRESH: usize = 100;
+/// this: the rent-or-buy rule, with the price of a factorisation in GMRES iterations. With
+/// dense LU factors (1025 unknowns 35 ms against 0.36 ms per solve, 2049 260 ms against 2.5
+/// ms) the price was about 100 at both sizes. In HODLR form both are cheaper, the solves more
+/// so (2049: ~40 ms against ~0.1 ms; a GMRES iteration then costs about as much again in the
+/// Jacobian product). The waviness example (2048 cells, 2000 steps; solve time, 2-core
+/// machine) took 7.7 s with a budget of 50, 6.3-6.6 s with 100, 5.9-6.1 s with 200 (5.6
+/// GMRES iterations per step) and 5.9-6.0 s with 400 (6.8 per step).
+const DENSE_REFRESH: usize = 200;
 
-/// One Newton step's linear solve J u = rhs preconditioned by the dense LU kept in `sys` (see
-/// [`system::DensePreconditioner`]): the kept factors are used as long as they serve (at most
-/// [`DENSE_STALE_MAX`] iterations to reach `eta`), else refactored here and the solve repeated;
-/// they are marked for a refresh at the next step by the budget [`DENSE_REFRESH`].
-/// None if the matrix could not be factored (the caller falls back to the banded
-/// preconditioner). The GMRES iterations of a discarded attempt are counted in `stats`.
+/// One Newton step's linear solve J u = rhs preconditioned by the exact Jacobian kept in
+/// `sys` (see [`system::DensePreconditioner`]): the kept factors are used as long as they
+/// serve (at most [`DENSE_STALE_MAX`] iterations to reach `eta`), else refactored here and the
+/// solve repeated; they are marked for a refresh at the next step by the budget
+/// [`DENSE_REFRESH`]. None if the matrix could not be factored (the caller falls back to the
+/// banded preconditioner). The GMRES iterations of a discarded attempt are counted in `stats`.
 #[allow(clippy::too_many_arguments)]
 fn dense_solve(
     sys: &mut System,

@@ -28,10 +28,11 @@
 //!   solution: the first Newton residual fell from ~4e-2 to ~2e-5 and one Newton step is
 //!   usually enough. If Newton fails from the prediction, the step is solved again from the
 //!   last solution.
-//! * infinite line (ny == 1, up to [`DENSE_MAX`] cells): a dense LU of the exact Jacobian as
-//!   the preconditioner, kept over the steps (see `super::dense_solve`). Measured on 1024
-//!   cells: 22.9 -> ~4 ms per step (Newton 3.0 -> 1.1, GMRES 226 -> ~6 per step); 2048 cells:
-//!   104 -> ~21 ms.
+//! * infinite line (ny == 1, up to [`DENSE_MAX`] cells): the exact Jacobian as the
+//!   preconditioner, kept over the steps (see `super::dense_solve`). Measured on 1024 cells:
+//!   22.9 -> ~4 ms per step (Newton 3.0 -> 1.1, GMRES 226 -> ~6 per step) with dense LU
+//!   factors, 2048 cells: 104 -> ~21 ms; then 1.2 and 3.6 ms with the factors in HODLR form
+//!   (their solves O(n k log n) instead of O(n^2)).
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};

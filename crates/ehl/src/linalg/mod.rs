@@ -7,6 +7,8 @@
 //!   infinite line contact, reused over time steps), and a small double-precision solve;
 //! * [`multigrid`]: line-relaxation aggregation multigrid for a local line operator (the Newton
 //!   preconditioner on 2D grids);
+//! * [`hodlr`]: hierarchical off-diagonal low-rank approximate inverse (the preconditioner of
+//!   a transient infinite line contact: O(n k log n) solves in place of dense LU's O(n^2));
 //! * [`gmres`]: restarted, flexible, right-preconditioned GMRES (the Newton steps).
 //!
 //! The discrete Reynolds operator that these solve is [`crate::reynolds`]; the EHL
@@ -16,4 +18,5 @@ pub mod anderson;
 pub mod banded;
 pub mod dense;
 pub mod gmres;
+pub mod hodlr;
 pub mod multigrid;
