@@ -269,8 +269,22 @@ fn argmax(r: &[f64]) -> (usize, f64) {
     )
 }
 
+/// a . b with four independent partial sums (a fixed order, so the result does not depend on
+/// the machine; the compiler can keep them in one vector register where one running sum
+/// would be a chain of dependent additions).
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut s = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            s[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (s[0] + s[2]) + (s[1] + s[3]) + tail
 }
 
 impl Node {

@@ -1438,14 +1438,17 @@ pub fn write_passage_gif(path: &Path, case: &Case, grid: &Grid, t: &TransientRec
         .par_iter()
         .map(|&k| {
             let buf = draw(k)?;
-            let mut seen: std::collections::HashMap<[u8; 3], u8> = Default::default();
+            // a direct-mapped cache of the palette search: a frame has few distinct colours
+            let mut seen = vec![(u32::MAX, 0u8); 1 << 12];
             let idx: Vec<u8> = buf
                 .chunks_exact(3)
                 .map(|c| {
-                    let rgb = [c[0], c[1], c[2]];
-                    *seen
-                        .entry(rgb)
-                        .or_insert_with(|| quant.index_of(&[c[0], c[1], c[2], 255]) as u8)
+                    let key = u32::from_be_bytes([0, c[0], c[1], c[2]]);
+                    let slot = &mut seen[(key.wrapping_mul(0x9E37_79B1) >> 20) as usize];
+                    if slot.0 != key {
+                        *slot = (key, quant.index_of(&[c[0], c[1], c[2], 255]) as u8);
+                    }
+                    slot.1
                 })
                 .collect();
             let mut f = gif::Frame::from_indexed_pixels(w as u16, h as u16, &idx, None);
