@@ -543,64 +543,69 @@ impl System {
     /// The per-cell scaling c_k = 1 / (Poiseuille diagonal + |wedge diagonal|) of the
     /// min-function (0 on cells without material); with `share`, also the Poiseuille part's
     /// share c_k Pois_k of that diagonal (what the preconditioner's coarse grids select by).
-    pub fn scaling(&self, st: &State, c: &mut [f64], mut share: Option<&mut [f64]>) {
-        let rg = &self.rg;
-        for j in 0..rg.ny {
-            for i in 0..rg.nx {
-                let k = j * rg.nx + i;
-                let (ck, sk) = if self.active[k] {
-                    let (pois, wedge) = self.diagonal(st, i, j);
-                    let ck = 1.0 / (pois + wedge.abs());
-                    (ck, ck * pois)
+    pub fn scaling(&self, st: &State, c: &mut [f64], share: Option<&mut [f64]>) {
+        let nx = self.rg.nx;
+        let (rg, active, khat, c0) = (
+            &self.rg,
+            &self.active[..],
+            &self.khat[..],
+            self.squeeze_c0(),
+        );
+        let row = |j: usize, cj: &mut [f64], mut sj: Option<&mut [f64]>| {
+            for (i, ck) in cj.iter_mut().enumerate() {
+                let k = j * nx + i;
+                let (c, s) = if active[k] {
+                    let (pois, wedge) = diagonal(rg, active, khat, c0, st, i, j);
+                    let c = 1.0 / (pois + wedge.abs());
+                    (c, c * pois)
                 } else {
                     (0.0, 0.0)
                 };
-                c[k] = ck;
-                if let Some(s) = share.as_deref_mut() {
-                    s[k] = sk;
+                *ck = c;
+                if let Some(sj) = sj.as_deref_mut() {
+                    sj[i] = s;
                 }
             }
+        };
+        match share {
+            Some(share) => c
+                .par_chunks_mut(nx)
+                .zip(share.par_chunks_mut(nx))
+                .with_min_len(min_len(nx))
+                .enumerate()
+                .for_each(|(j, (cj, sj))| row(j, cj, Some(sj))),
+            None => c
+                .par_chunks_mut(nx)
+                .with_min_len(min_len(nx))
+                .enumerate()
+                .for_each(|(j, cj)| row(j, cj, None)),
         }
-    }
-
-    /// (Poiseuille, wedge) parts of dF_k/dP_k with eps frozen.
-    fn diagonal(&self, st: &State, i: usize, j: usize) -> (f64, f64) {
-        let rg = &self.rg;
-        let k = j * rg.nx + i;
-        let f = st.fields(&self.active);
-        let nb = residual::neighbours(rg, i, j);
-        let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
-        let mut pois = 0.0;
-        for (d, &n) in nb.iter().enumerate() {
-            if d >= 2 && rg.ny == 1 {
-                break;
-            }
-            pois += residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 }).0;
-        }
-        let a = flow_stencil(rg, &self.active, self.squeeze_c0(), i, j);
-        let mut wedge = a[0] * (st.drho[k] * st.h[k] + st.rho[k] * self.khat[0]);
-        for (o, &ao) in a.iter().enumerate().skip(1) {
-            if i >= o && self.active[k - o] && o < self.khat.len() {
-                wedge += ao * st.rho[k - o] * self.khat[o];
-            }
-        }
-        (pois, wedge)
     }
 
     /// Residual vector R = [Phi; s_L (carried - W*)] for the scaling `c`; returns the
     /// active set (P_k <= c_k F_k, or no material) in `set`.
     pub fn merit_vector(&self, st: &State, c: &[f64], r: &mut [f64], set: &mut [bool]) {
         let n = self.n();
-        for k in 0..n {
-            if self.active[k] {
-                let cf = c[k] * st.f[k];
-                set[k] = st.p[k] <= cf;
-                r[k] = st.p[k].min(cf);
-            } else {
-                set[k] = true;
-                r[k] = 0.0;
-            }
-        }
+        let nx = self.rg.nx;
+        let active = &self.active[..];
+        r[..n]
+            .par_chunks_mut(nx)
+            .zip(set.par_chunks_mut(nx))
+            .with_min_len(min_len(nx))
+            .enumerate()
+            .for_each(|(j, (rj, sj))| {
+                for (i, (r, s)) in rj.iter_mut().zip(sj).enumerate() {
+                    let k = j * nx + i;
+                    if active[k] {
+                        let cf = c[k] * st.f[k];
+                        *s = st.p[k] <= cf;
+                        *r = st.p[k].min(cf);
+                    } else {
+                        *s = true;
+                        *r = 0.0;
+                    }
+                }
+            });
         r[n] = self.load_scale() * (self.carried(&st.p) - self.load);
     }
 
@@ -608,28 +613,70 @@ impl System {
     /// ||min(P / c, F)||_2 / ||d(rho H)/dX||_2 over the cells with material (F units both).
     pub fn relative_residual(&self, st: &State, c: &[f64]) -> f64 {
         let rg = &self.rg;
-        let f = st.fields(&self.active);
-        let (mut num, mut den) = (0.0, 0.0);
-        for j in 0..rg.ny {
-            for i in 0..rg.nx {
-                let k = j * rg.nx + i;
-                if !self.active[k] {
-                    continue;
+        let active = &self.active[..];
+        let f = st.fields(active);
+        // row sums in parallel, added in row order (the same result on any number of threads)
+        let rows: Vec<(f64, f64)> = (0..rg.ny)
+            .into_par_iter()
+            .with_min_len(min_len(rg.nx))
+            .map(|j| {
+                let (mut num, mut den) = (0.0, 0.0);
+                for i in 0..rg.nx {
+                    let k = j * rg.nx + i;
+                    if !active[k] {
+                        continue;
+                    }
+                    let r = (st.p[k] / c[k]).min(st.f[k]);
+                    num += r * r;
+                    let w = (residual::couette_east(rg, &f, i, j)
+                        - residual::couette_west(rg, &f, i, j))
+                        / rg.dx;
+                    den += w * w;
                 }
-                let r = (st.p[k] / c[k]).min(st.f[k]);
-                num += r * r;
-                let w = (residual::couette_east(rg, &f, i, j)
-                    - residual::couette_west(rg, &f, i, j))
-                    / rg.dx;
-                den += w * w;
-            }
-        }
+                (num, den)
+            })
+            .collect();
+        let (num, den) = rows
+            .iter()
+            .fold((0.0, 0.0), |(a, b), (n, d)| (a + n, b + d));
         if den > 0.0 {
             (num / den).sqrt()
         } else {
             num.sqrt()
         }
     }
+}
+
+/// (Poiseuille, wedge) parts of dF_k/dP_k with eps frozen (see [`System::scaling`]).
+#[allow(clippy::too_many_arguments)]
+fn diagonal(
+    rg: &ReynoldsGrid,
+    active: &[bool],
+    khat: &[f64],
+    c0: f64,
+    st: &State,
+    i: usize,
+    j: usize,
+) -> (f64, f64) {
+    let k = j * rg.nx + i;
+    let f = st.fields(active);
+    let nb = residual::neighbours(rg, i, j);
+    let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
+    let mut pois = 0.0;
+    for (d, &n) in nb.iter().enumerate() {
+        if d >= 2 && rg.ny == 1 {
+            break;
+        }
+        pois += residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 }).0;
+    }
+    let a = flow_stencil(rg, active, c0, i, j);
+    let mut wedge = a[0] * (st.drho[k] * st.h[k] + st.rho[k] * khat[0]);
+    for (o, &ao) in a.iter().enumerate().skip(1) {
+        if i >= o && active[k - o] && o < khat.len() {
+            wedge += ao * st.rho[k - o] * khat[o];
+        }
+    }
+    (pois, wedge)
 }
 
 /// Adds row by row the local linearisation of grid line `j` (the Poiseuille stencil along x with

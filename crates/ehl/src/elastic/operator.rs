@@ -322,12 +322,15 @@ fn wrapped_offset(i: usize, n: usize, p: usize) -> Option<isize> {
     }
 }
 
-/// Fewest items of `len` values each that a rayon task takes: tasks of some 4k values, so
+/// Fewest items of `len` values each that a rayon task takes: tasks of at least ~1k values, so
 /// small grids (an infinite line has one row) are not split into thousands of tiny jobs whose
 /// scheduling costs more than the work (measured: 60 % of a 1024-cell line solve was spent
-/// in the scheduler before this).
+/// in the scheduler before this). It was 4k values until a 16-core measurement: a 128 x 128
+/// grid then made at most 4 tasks per loop and ran no faster on 16 threads than on 4; with
+/// 1k, 16 threads ran the thesis pit 15-25 % faster at 128^2 and 256^2, and 2 threads as
+/// before (BENCHMARKS.md, "Thread scaling on 16 cores").
 pub(crate) fn min_len(len: usize) -> usize {
-    (4_096 / len.max(1)).max(1)
+    (1_024 / len.max(1)).max(1)
 }
 
 /// In-place 1D FFTs of every column (contiguous chunks of `plan.len()`) of a transposed spectrum.

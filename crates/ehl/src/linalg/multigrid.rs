@@ -306,14 +306,21 @@ impl LineMultigrid {
         let ncx = nx.div_ceil(cx);
         let mask = if l == 0 { self.mask.as_deref() } else { None };
         let on = |k: usize| mask.is_none_or(|m| m[k]);
-        rc.iter_mut().for_each(|v| *v = 0.0);
-        for j in 0..ny {
-            for i in 0..nx {
-                if on(j * nx + i) {
-                    rc[(j / cy) * ncx + i / cx] += t[j * nx + i];
+        // restriction: each coarse row sums its fine rows (in the same order as one serial
+        // pass, so the result does not depend on the threads)
+        rc.par_chunks_mut(ncx)
+            .with_min_len(min_len(nx * cy))
+            .enumerate()
+            .for_each(|(jc, row)| {
+                row.iter_mut().for_each(|v| *v = 0.0);
+                for j in jc * cy..((jc + 1) * cy).min(ny) {
+                    for i in 0..nx {
+                        if on(j * nx + i) {
+                            row[i / cx] += t[j * nx + i];
+                        }
+                    }
                 }
-            }
-        }
+            });
         self.cycle(l + 1, rc, xc);
         x.par_chunks_mut(nx)
             .with_min_len(min_len(nx))
