@@ -700,7 +700,7 @@ fn dense_solve(
             Some(pc) => pc,
             None => {
                 sys.dense_builds += 1;
-                DensePreconditioner::new(sys, st, c, set, bcol, 0.0)?
+                DensePreconditioner::new(sys, st, c, set, bcol, 0.0, true)?
             }
         };
         let max = if fresh {

@@ -1059,34 +1059,10 @@ enum DenseForm {
 
 impl DensePreconditioner {
     /// Assemble at the state `st` (scaling `c`, active set `set`, `bcol` = dR/dH0, `shift` on
-    /// the Reynolds rows) and factor. None on a 2D grid or if the matrix is singular.
+    /// the Reynolds rows) and factor: in HODLR form if `hodlr` (and it succeeds), else as dense
+    /// LU factors. None on a 2D grid or if the matrix is singular.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
-        sys: &System,
-        st: &State,
-        c: &[f64],
-        set: &[bool],
-        bcol: &[f64],
-        shift: f64,
-    ) -> Option<DensePreconditioner> {
-        Self::build(sys, st, c, set, bcol, shift, true)
-    }
-
-    /// The same held as dense LU factors only (to test the HODLR form against).
-    #[cfg(test)]
-    fn dense(
-        sys: &System,
-        st: &State,
-        c: &[f64],
-        set: &[bool],
-        bcol: &[f64],
-        shift: f64,
-    ) -> Option<DensePreconditioner> {
-        Self::build(sys, st, c, set, bcol, shift, false)
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn build(
         sys: &System,
         st: &State,
         c: &[f64],
@@ -1255,11 +1231,8 @@ mod tests {
         check_directional(Some(30.0));
     }
 
-    fn check_directional(c0: Option<f64>) {
-        let (nx, ny) = (24, 10);
-        let (b, r, e) = (1e-4, 0.01, 2.2e11);
-        let grid = Grid::new(nx, ny, -2.0 * b, 1.5 * b, -b, b);
-        let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
+    /// Roelands + Dowson-Higginson, Newtonian, p_h 0.3 GPa: the lubricant of these tests.
+    fn test_physics() -> Physics {
         let lubricant = Lubricant {
             viscosity: 0.04,
             pressure_viscosity_coefficient: 2e-8,
@@ -1268,7 +1241,15 @@ mod tests {
             density_model: DensityModel::DowsonHigginson,
             rheology: Rheology::Newtonian,
         };
-        let phys = Physics::new(lubricant, 0.3e9, 2.0);
+        Physics::new(lubricant, 0.3e9, 2.0)
+    }
+
+    fn check_directional(c0: Option<f64>) {
+        let (nx, ny) = (24, 10);
+        let (b, r, e) = (1e-4, 0.01, 2.2e11);
+        let grid = Grid::new(nx, ny, -2.0 * b, 1.5 * b, -b, b);
+        let gap = move |x: f64, y: f64| (x * x + y * y) / (2.0 * r);
+        let phys = test_physics();
         let op = Box::new(FftDeflection::half_space(grid, e));
         let mut sys = System::new(grid, op, &gap, b, r, phys, 100.0, 4, true);
         let n = grid.len();
@@ -1344,15 +1325,7 @@ mod tests {
         let (b, r, e) = (1e-4, 0.01, 2.2e11);
         let grid = Grid::new(nx, 1, -3.0 * b, 1.5 * b, -0.5, 0.5);
         let gap = move |x: f64, _y: f64| x * x / (2.0 * r);
-        let lubricant = Lubricant {
-            viscosity: 0.04,
-            pressure_viscosity_coefficient: 2e-8,
-            density: 850.0,
-            viscosity_model: ViscosityModel::Roelands,
-            density_model: DensityModel::DowsonHigginson,
-            rheology: Rheology::Newtonian,
-        };
-        let phys = Physics::new(lubricant, 0.3e9, 2.0);
+        let phys = test_physics();
         let op = Box::new(FftDeflection::line(grid, e));
         let band = nx;
         let mut sys = System::new(grid, op, &gap, b, r, phys, 100.0, band, true);
@@ -1391,9 +1364,9 @@ mod tests {
             .collect();
         let mut ju = vec![0.0; n + 1];
         jacobian_product(&mut sys, &st, &mut lin, &c, &set, 0.0, &u, &mut ju);
-        let pc = DensePreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0).expect("factored");
+        let pc = DensePreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, true).expect("factored");
         assert!(matches!(pc.form, DenseForm::Hodlr { .. }));
-        let dense = match DensePreconditioner::dense(&sys, &st, &c, &set, &bcol, 0.0) {
+        let dense = match DensePreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, false) {
             Some(d) => d,
             None => panic!("dense LU failed"),
         };
