@@ -226,7 +226,8 @@ fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize) -> (f64, f64) {
 /// collapse onto nabla holds: M = 200 gives the same figures) on 1024 cells, one cell per step,
 /// at nabla = 2, 4 and 10: within 3 % of the fit. Measured 0.683 / 0.466 / 0.1725 against
 /// 0.685 / 0.463 / 0.175 (0.3 / 0.6 / 1.7 %); on 2048 cells 0.4635 and 0.1705 at nabla 4 and 10,
-/// so up to 1.2 % of the gap is grid error and the rest is within a fit's own scatter. A missing
+/// so the grid-converged gap is up to 2.8 % (nabla 10): the margin is thin, and the test is
+/// first a guard against a wrong squeeze or wedge term, which misses by tens of %. A missing
 /// or wrong squeeze term fails this by far: a film that follows each frozen gap flattens every
 /// wavelength alike. At lower load (M = 10-20) or L = 5 the ratios lie 7-30 % above the fit
 /// (docs/pits.md, "Amplitude reduction"; the ignored `waviness_amplitude_reduction_probe`).

@@ -657,8 +657,8 @@ impl NewtonRun {
 const DENSE_STALE_MAX: usize = 20;
 
 /// A lagged dense preconditioner is refactored before the next Newton step once the GMRES
-/// iterations it has cost beyond two per solve (what fresh factors take) add up to more than
-/// this: the rent-or-buy rule, with the price of a factorisation in GMRES iterations. With
+/// iterations it has cost beyond two per solve (what fresh dense LU factors took) add up to
+/// more than this: the rent-or-buy rule, with the price of a factorisation in GMRES iterations. With
 /// dense LU factors (1025 unknowns 35 ms against 0.36 ms per solve, 2049 260 ms against 2.5
 /// ms) the price was about 100 at both sizes. In HODLR form both are cheaper, the solves more
 /// so (2049: ~40 ms against ~0.1 ms; a GMRES iteration then costs about as much again in the

@@ -25,8 +25,8 @@
 //! Reynolds rows of the inlet and of the Hertzian zone differ by decades).
 //!
 //! The result is a preconditioner, not an exact solver: the dropped entries make
-//! M^-1 A = I + E with |E| of the order of the tolerance times the leaves' condition, and the
-//! Krylov iteration that uses it removes the rest.
+//! M^-1 A = I + E with |E| of the order of the tolerance times the condition of the
+//! approximated matrix, and the Krylov iteration that uses it removes the rest.
 
 use rayon::prelude::*;
 
@@ -77,10 +77,10 @@ impl Hodlr {
         assert!(leaf >= 1 && tol >= 0.0);
         let row_scale: Vec<f64> = (0..n)
             .map(|i| {
-                let m = a[i * n..(i + 1) * n]
-                    .iter()
-                    .fold(0.0f64, |m, v| m.max(v.abs()));
-                if m > 0.0 && m.is_finite() {
+                let row = &a[i * n..(i + 1) * n];
+                let m = row.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                // (f64::max passes over NaN, so every entry is checked)
+                if m > 0.0 && row.iter().all(|v| v.is_finite()) {
                     1.0 / m
                 } else {
                     f64::NAN
@@ -476,12 +476,16 @@ mod tests {
         assert!(residual(&a, n, &z, &b) > 10.0 * r);
     }
 
-    /// A singular matrix (a zero row) is refused.
+    /// A singular matrix (a zero row) is refused, and so is one with a NaN far from the
+    /// diagonal (which the truncation would otherwise drop unseen).
     #[test]
-    fn refuses_a_zero_row() {
+    fn refuses_a_zero_row_or_a_nan() {
         let n = 100;
         let mut a = line_like(n);
         a[40 * n..41 * n].iter_mut().for_each(|v| *v = 0.0);
+        assert!(Hodlr::factor(&a, n, 16, 1e-8).is_none());
+        let mut a = line_like(n);
+        a[3 * n + 90] = f64::NAN;
         assert!(Hodlr::factor(&a, n, 16, 1e-8).is_none());
     }
 }

@@ -21,8 +21,8 @@ pub fn line_nabla(wavelength_over_b: f64, m: f64, l: f64) -> f64 {
 /// The fitted amplitude ratio of a line contact, A_d / A_i = 1 / (1 + 0.17 nabla + 0.03 nabla^2)
 /// (dimensionless), the fit to numerical solutions that the project's issue 9 quotes for Venner
 /// et al. 1997 / Venner & Lubrecht 2000. Its coefficients and the (M, L) range it was fitted
-/// over are not checked here against the paper. Our solutions follow it within 1.8 % at L = 10,
-/// M = 100-200 and lie above it at lower load (7-14 % at M = 20, L = 10; 12-30 % at L = 5):
+/// over are not checked here against the paper. Our solutions follow it within 2.8 % at L = 10,
+/// M = 100-200 and lie above it at lower load (7-14 % at M = 20, L = 10; 12-33 % at L = 5):
 /// the collapse onto nabla holds in the piezoviscous-elastic regime (docs/pits.md).
 pub fn line_amplitude_ratio(nabla: f64) -> f64 {
     1.0 / (1.0 + 0.17 * nabla + 0.03 * nabla * nabla)
