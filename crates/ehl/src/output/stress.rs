@@ -8,7 +8,8 @@
 //!   maximum and below the centre of each feature, for each body.
 //! * `stress.png`: an x-z section of von Mises through the worst point of the worst body, depth
 //!   in um (and b), the maximum marked.
-//! * `stress.vtr`: the volume (ParaView), z pointing down as negative coordinates.
+//! * `stress.vtr`: the volume (ParaView), z pointing down as negative coordinates; the fields
+//!   in single precision (`Float32`, as computed), the coordinates in double.
 //! * `stress_passage.npz` (transient runs): `x_body` (nx_body, m; the material frame of body k,
 //!   x_body = x - u_k t), `y` (ny), `z` (window layers, m), and for each body k computed
 //!   `max_von_mises_k`, `tau_xz_range_k` (Pa) and with `fatigue.dang_van` `dang_van_k`
@@ -131,18 +132,19 @@ fn write_vtr(path: &Path, a: &StressAnalysis) -> Result<()> {
     let g = &a.grid;
     let z: Vec<f64> = a.bodies.first().map(|b| b.field.z.iter().map(|v| -v).collect()).unwrap_or_default();
     let mut names = Vec::new();
-    let mut data: Vec<Vec<f64>> = Vec::new();
+    // the fields as computed, in single precision (Float32)
+    let mut data: Vec<&[f32]> = Vec::new();
     for b in &a.bodies {
         for (n, v) in COMPONENTS.iter().zip(b.field.components.iter()) {
             names.push(format!("{n}_{}", b.body));
-            data.push(v.iter().map(|&x| x as f64).collect());
+            data.push(v);
         }
         names.push(format!("von_mises_{}", b.body));
-        data.push(b.von_mises.iter().map(|&x| x as f64).collect());
+        data.push(&b.von_mises);
         names.push(format!("tresca_{}", b.body));
-        data.push(b.max_shear.iter().map(|&x| x as f64).collect());
+        data.push(&b.max_shear);
     }
-    let fields: Vec<(&str, &[f64])> = names.iter().map(|n| n.as_str()).zip(data.iter().map(|d| d.as_slice())).collect();
+    let fields: Vec<(&str, &[f32])> = names.iter().map(|n| n.as_str()).zip(data).collect();
     let bytes = super::vtk::rectilinear_volume_xml(&g.xs(), &g.ys(), &z, &fields, None);
     std::fs::write(path, bytes).map_err(|e| super::io_err(path, e))
 }
