@@ -39,7 +39,7 @@ use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
 use crate::linalg::banded::Banded;
-use crate::linalg::dense::DenseLu;
+use crate::linalg::dense::{dot4 as dot, DenseLu};
 use crate::linalg::hodlr::Hodlr;
 use crate::linalg::multigrid::{LineMultigrid, LineOperator};
 use crate::lubricant::{density, viscosity};
@@ -1163,10 +1163,6 @@ impl DensePreconditioner {
             }
         }
     }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// J v for the current step: identity rows on the active set, c_k dF_k (exact directional

@@ -28,6 +28,7 @@
 //! M^-1 A = I + E with |E| of the order of the tolerance times the condition of the
 //! approximated matrix, and the Krylov iteration that uses it removes the rest.
 
+use super::dense::{dot4 as dot, SmallLu};
 use rayon::prelude::*;
 
 /// A HODLR approximation of A^-1 (see the module docs).
@@ -43,7 +44,7 @@ pub struct Hodlr {
 
 #[derive(Debug, Clone)]
 enum Node {
-    Leaf(Lu64),
+    Leaf(SmallLu),
     Split(Box<Split>),
 }
 
@@ -62,7 +63,7 @@ struct Split {
     v2: Vec<f64>,
     w2: Vec<f64>,
     /// the (k1 + k2) coupling system of the module docs
-    s: Option<Lu64>,
+    s: Option<SmallLu>,
 }
 
 /// Rows from which the two halves of a split are solved on two threads.
@@ -151,7 +152,7 @@ impl Mat<'_> {
 /// The HODLR node of rows and columns off..off + size.
 fn build(m: &Mat, off: usize, size: usize, leaf: usize, tol: f64) -> Option<Node> {
     if size <= leaf {
-        return Lu64::factor(m.block(off, size, off, size), size).map(Node::Leaf);
+        return SmallLu::factor(m.block(off, size, off, size), size).map(Node::Leaf);
     }
     let n1 = size / 2;
     let n2 = size - n1;
@@ -195,7 +196,7 @@ fn build(m: &Mat, off: usize, size: usize, leaf: usize, tol: f64) -> Option<Node
                 s[(k1 + j) * k + i] = dot(&v2[j * n1..(j + 1) * n1], &w1[i * n1..(i + 1) * n1]);
             }
         }
-        Some(Lu64::factor(s, k)?)
+        Some(SmallLu::factor(s, k)?)
     } else {
         None
     };
@@ -269,24 +270,6 @@ fn argmax(r: &[f64]) -> (usize, f64) {
     )
 }
 
-/// a . b with four independent partial sums (a fixed order, so the result does not depend on
-/// the machine; the compiler can keep them in one vector register where one running sum
-/// would be a chain of dependent additions).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut s = [0.0; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for k in 0..4 {
-            s[k] += x[k] * y[k];
-        }
-    }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (s[0] + s[2]) + (s[1] + s[3]) + tail
-}
-
 impl Node {
     fn max_rank(&self) -> usize {
         match self {
@@ -328,61 +311,6 @@ impl Node {
                     }
                 }
             }
-        }
-    }
-}
-
-/// Dense LU with partial pivoting in double precision, kept for repeated solves (the leaves
-/// and the coupling systems).
-#[derive(Debug, Clone)]
-struct Lu64 {
-    n: usize,
-    lu: Vec<f64>,
-    piv: Vec<usize>,
-}
-
-impl Lu64 {
-    fn factor(mut a: Vec<f64>, n: usize) -> Option<Lu64> {
-        let mut piv = vec![0; n];
-        for c in 0..n {
-            let p = (c..n)
-                .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
-                .unwrap();
-            if !(a[p * n + c].abs() > 0.0 && a[p * n + c].is_finite()) {
-                return None;
-            }
-            piv[c] = p;
-            if p != c {
-                for j in 0..n {
-                    a.swap(c * n + j, p * n + j);
-                }
-            }
-            let d = 1.0 / a[c * n + c];
-            for r in c + 1..n {
-                let f = a[r * n + c] * d;
-                a[r * n + c] = f;
-                if f != 0.0 {
-                    for j in c + 1..n {
-                        a[r * n + j] -= f * a[c * n + j];
-                    }
-                }
-            }
-        }
-        Some(Lu64 { n, lu: a, piv })
-    }
-
-    fn solve(&self, x: &mut [f64]) {
-        let n = self.n;
-        for (k, &p) in self.piv.iter().enumerate() {
-            x.swap(k, p);
-        }
-        for i in 0..n {
-            let s = dot(&self.lu[i * n..i * n + i], &x[..i]);
-            x[i] -= s;
-        }
-        for i in (0..n).rev() {
-            let s = dot(&self.lu[i * n + i + 1..(i + 1) * n], &x[i + 1..]);
-            x[i] = (x[i] - s) / self.lu[i * n + i];
         }
     }
 }
