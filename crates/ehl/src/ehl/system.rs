@@ -1380,4 +1380,68 @@ mod tests {
             assert!(err < 1e-3 * norm, "{name}: relative error {}", err / norm);
         }
     }
+
+    /// `DenseSink::add_kernel` with some cells inactive (its masked path) puts the same
+    /// entries as `BandSink::add_kernel` with a band over the whole line, an independent
+    /// masking (exact: the same products, added in the same order), and with every cell
+    /// active its vectorised path equals its masked path with an all-true mask.
+    #[test]
+    fn dense_sink_masks_the_kernel_as_the_band_sink() {
+        let n: usize = 37;
+        let khat: Vec<f64> = (0..n).map(|d| 1.0 / (1.0 + d as f64).powf(1.3)).collect();
+        let kk: Vec<f64> = (0..2 * n - 1).map(|t| khat[t.abs_diff(n - 1)]).collect();
+        let mut active: Vec<bool> = (0..n).map(|i| i % 3 != 1 && i != 30).collect();
+        let entries = [
+            (0, 0, 0.7),
+            (5, 12, -1.3),
+            (20, 36, 2.1),
+            (36, 3, 0.4),
+            (17, 17, 1.0),
+        ];
+        let fill = |sink: &mut dyn LineSink| {
+            for &(i, m, a) in &entries {
+                sink.add_kernel(i, m, a);
+            }
+        };
+        for all in [false, true] {
+            if all {
+                active.iter_mut().for_each(|a| *a = true);
+            }
+            let mut dense = vec![0.0; n * n];
+            fill(&mut DenseSink {
+                a: &mut dense,
+                n,
+                active: &active,
+                all_active: false,
+                kk: kk.clone(),
+            });
+            let mut band = Banded::new(n, n - 1, n - 1);
+            fill(&mut BandSink {
+                m: &mut band,
+                active: &active,
+                khat: &khat,
+            });
+            let mut fast = vec![0.0; n * n];
+            fill(&mut DenseSink {
+                a: &mut fast,
+                n,
+                active: &active,
+                all_active: all,
+                kk: kk.clone(),
+            });
+            let mut masked_zero = 0;
+            for i in 0..n {
+                for l in 0..n {
+                    let d = dense[i * n + l];
+                    assert_eq!(d, band.get(i, l), "({i}, {l}), all active: {all}");
+                    assert!((d - fast[i * n + l]).abs() <= 1e-15 * d.abs().max(1.0));
+                    masked_zero += usize::from(!active[l] && d == 0.0);
+                }
+            }
+            // the mask did act: every inactive column is empty
+            let inactive = active.iter().filter(|a| !**a).count();
+            assert_eq!(masked_zero, inactive * n);
+            assert!(all || inactive > 10);
+        }
+    }
 }
