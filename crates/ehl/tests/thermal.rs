@@ -227,6 +227,47 @@ fn film_reduction_sweep() {
     }
 }
 
+/// A thermal run beyond the loading at which the solver is known to converge says so: pure
+/// rolling on the Table 3.7 line with the Barus oil at U = 2.2e-10 (L = 5.0, twice the
+/// `CONVERGED_THERMAL_LOADING` of 2.5) does not converge, and its reason names the loading and
+/// the limit; `ehl check` notes it beforehand. Below the limit (U = 7.3e-11, L = 0.55) the run
+/// converges and neither says anything. The failing run takes ~0.1 s (it stops at the first
+/// outer iteration).
+#[test]
+fn a_thermal_run_beyond_the_known_loading_says_so() {
+    let high = |u: &str| {
+        let speed = format!("motion.dimensionless_speed={u}");
+        case(
+            "[thermal]\nviscosity_beta = 0.03\n",
+            &[
+                NEWTONIAN,
+                "motion.slide_to_roll=0.0",
+                &speed,
+                "lubricant.viscosity_model=\"barus\"",
+            ],
+        )
+    };
+    let c = high("2.2e-10");
+    let l = ehl::reference::check::case_thermal_loading(&c).unwrap();
+    assert!((l - 5.01).abs() < 0.01, "L {l}");
+    let s = solve(&c);
+    assert!(!s.summary.converged);
+    let why = &s.summary.termination;
+    assert!(
+        why.contains("thermal loading L = eta0 beta u_e^2/k_f is 5.01, above 2.5"),
+        "{why}"
+    );
+    let note = ehl::reference::check::check_report(&c).to_string();
+    assert!(note.contains("note: L is above 2.5"), "{note}");
+
+    let c = high("7.3e-11");
+    let s = solve(&c);
+    assert!(s.summary.converged, "{}", s.summary.termination);
+    assert!(!s.summary.termination.contains("thermal loading"));
+    let note = ehl::reference::check::check_report(&c).to_string();
+    assert!(!note.contains("note: L is above"), "{note}");
+}
+
 /// (h_thermal / h_isothermal, L, Murch-Wilson, Gupta) at the dimensionless speed `u`.
 fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
     let sets = [

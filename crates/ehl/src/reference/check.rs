@@ -88,6 +88,23 @@ pub struct TransientCheck {
 }
 
 /// Builds the report of a validated case.
+/// The thermal loading L = eta0 beta u_e^2 / k_f of a case with `[thermal]`
+/// ([`super::thermal::thermal_loading`]; None without `[thermal]`, `[motion]` or `[lubricant]`).
+pub fn case_thermal_loading(case: &Case) -> Option<f64> {
+    let (th, m, lub) = (
+        case.thermal.as_ref()?,
+        case.motion.as_ref()?,
+        case.lubricant.as_ref()?,
+    );
+    let tl = &th.lubricant;
+    Some(super::thermal::thermal_loading(
+        lub.viscosity,
+        tl.viscosity_temperature.beta,
+        m.entrainment_speed,
+        tl.conductivity,
+    ))
+}
+
 pub fn check_report(case: &Case) -> CheckReport {
     let geom = Geometry::new(case);
     let h = geom.hertz();
@@ -190,15 +207,10 @@ pub fn check_report(case: &Case) -> CheckReport {
             ));
         }
     }
-    if let (Some(th), Some(m), Some(lub)) = (&case.thermal, &case.motion, &case.lubricant) {
+    if let (Some(th), Some(m), Some(l)) = (&case.thermal, &case.motion, case_thermal_loading(case))
+    {
         let tl = &th.lubricant;
         let beta = tl.viscosity_temperature.beta;
-        let l = super::thermal::thermal_loading(
-            lub.viscosity,
-            beta,
-            m.entrainment_speed,
-            tl.conductivity,
-        );
         let srr = m.slide_to_roll;
         let b = report.hertz.b;
         report.thermal = Some(ThermalCheck {
@@ -416,6 +428,13 @@ impl fmt::Display for CheckReport {
                 format!("{}, {}", fixed(t.peclet[0], 2), fixed(t.peclet[1], 2)),
                 "",
             )?;
+            if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
+                writeln!(
+                    f,
+                    "  note: L is above {}, the largest at which the thermal solver is known to converge in pure rolling; a run may fail in the thick inlet film (docs/thermal.md, \"Left open\")",
+                    crate::ehl::thermal::CONVERGED_THERMAL_LOADING
+                )?;
+            }
         }
         Ok(())
     }

@@ -4,7 +4,7 @@
 //! [`crate::thermal`], the fixed point in [`crate::ehl::thermal`].
 
 use crate::case::Case;
-use crate::ehl::thermal::{solve_thermal, ThermalParams, ThermalResult};
+use crate::ehl::thermal::{solve_thermal, ThermalParams, ThermalResult, CONVERGED_THERMAL_LOADING};
 use crate::ehl::{EhlParams, EhlProblem, EhlResult};
 use crate::lubricant::temperature::ThermalLaws;
 use crate::solution::{Summary, TemperatureFields};
@@ -30,7 +30,7 @@ pub fn solve(
     observer: &mut (dyn FnMut(usize, f64) + Send),
 ) -> Result<ThermalRun> {
     let mut contact = contact_for(case, problem.grid)?;
-    let result = solve_thermal(
+    let mut result = solve_thermal(
         problem,
         params,
         &ThermalParams::default(),
@@ -38,6 +38,9 @@ pub fn solve(
         &mut contact,
         observer,
     );
+    if let Some(hint) = loading_hint(case, &result.ehl) {
+        result.ehl.termination.push_str(&hint);
+    }
     let fields = contact.fields(&result.ehl.film);
     let friction_force = contact.friction_force();
     Ok(ThermalRun {
@@ -45,6 +48,17 @@ pub fn solve(
         fields,
         friction_force,
         contact,
+    })
+}
+
+/// What to add to the reason of a thermal solve `r` of `case` that failed at a thermal loading
+/// above [`CONVERGED_THERMAL_LOADING`] (None when it converged, was cancelled, or L is below).
+pub fn loading_hint(case: &Case, r: &EhlResult) -> Option<String> {
+    let l = crate::reference::check::case_thermal_loading(case)?;
+    (!r.converged && r.termination != "cancelled" && l > CONVERGED_THERMAL_LOADING).then(|| {
+        format!(
+            "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, where the thermal solver is not known to converge in pure rolling (docs/thermal.md, \"Left open\")"
+        )
     })
 }
 
