@@ -419,8 +419,28 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     }
     let n = rule.len();
     let h = col.h;
-    let ln_eta: Vec<f64> = eta.iter().map(|e| e.ln()).collect();
-    let mut eta_eff = vec![0.0; n];
+    // every per-point vector and the Jacobian in one allocation: this runs once per film
+    // column per film iteration, and its ~15 small vectors were 11 % of a thermal transient
+    // run (perf, the thesis pit at 128 x 128)
+    let mut work = vec![0.0; 14 * n + n * n];
+    let (ln_eta, rest) = work.split_at_mut(n);
+    let (eta_eff, rest) = rest.split_at_mut(n);
+    let (mut y, rest) = rest.split_at_mut(n);
+    let (mut r, rest) = rest.split_at_mut(n);
+    let (mut slope, rest) = rest.split_at_mut(n);
+    let (mut yp, rest) = rest.split_at_mut(n);
+    let (mut rp, rest) = rest.split_at_mut(n);
+    let (mut sp, rest) = rest.split_at_mut(n);
+    let (scratch, rest) = rest.split_at_mut(n);
+    let (dta, rest) = rest.split_at_mut(n);
+    let (dtb, rest) = rest.split_at_mut(n);
+    let (tau_x, rest) = rest.split_at_mut(n);
+    let (tau_y, rest) = rest.split_at_mut(n);
+    let (delta, jac) = rest.split_at_mut(n);
+    for (l, e) in ln_eta.iter_mut().zip(eta) {
+        *l = e.ln();
+    }
+    let ln_eta: &[f64] = ln_eta;
     // the residual R(y) into r and the law's slopes into s
     let residual = |y: &[f64], eta_eff: &mut [f64], r: &mut [f64], s: &mut [f64]| {
         for k in 0..n {
@@ -445,25 +465,19 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
         Ok(())
     };
     let norm = |r: &[f64]| r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut y: Vec<f64> = match start {
-        Some(s) => s.iter().map(|e| e.ln()).collect(),
-        None => ln_eta.clone(),
-    };
-    let (mut r, mut slope) = (vec![0.0; n], vec![0.0; n]);
-    residual(&y, &mut eta_eff, &mut r, &mut slope)?;
-    let mut res = norm(&r);
+    match start {
+        Some(s) => y.iter_mut().zip(s).for_each(|(y, e)| *y = e.ln()),
+        None => y.copy_from_slice(ln_eta),
+    }
+    residual(y, eta_eff, r, slope)?;
+    let mut res = norm(r);
     let mut iterations = 0;
-    let mut jac = vec![0.0; n * n];
-    let (mut yp, mut rp, mut sp, mut scratch) =
-        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut dta, mut dtb, mut tau) = (vec![0.0; n], vec![0.0; n], vec![(0.0, 0.0); n]);
-    let mut delta = vec![0.0; n];
     while res > opts.tol && iterations < opts.max_iter {
         iterations += 1;
         for k in 0..n {
             eta_eff[k] = y[k].exp();
         }
-        let (ta, tb, f0, _) = col.wall_stress(rule, &eta_eff);
+        let (ta, tb, f0, _) = col.wall_stress(rule, eta_eff);
         for j in 0..n {
             let e = rule.weights[j] / eta_eff[j];
             let d0 = -h * e;
@@ -473,10 +487,11 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
         }
         for k in 0..n {
             let z = h * rule.points[k];
-            tau[k] = (ta + z * col.dpdx, tb + z * col.dpdy);
+            tau_x[k] = ta + z * col.dpdx;
+            tau_y[k] = tb + z * col.dpdy;
         }
         for k in 0..n {
-            let (tx, ty) = tau[k];
+            let (tx, ty) = (tau_x[k], tau_y[k]);
             let mag2 = tx * tx + ty * ty;
             for j in 0..n {
                 let dln = if mag2 > 0.0 {
@@ -488,18 +503,18 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
                 jac[k * n + j] = own - slope[k] * (-own + dln);
             }
         }
-        delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
-        if !solve_small(&mut jac, &mut delta, n) {
+        delta.iter_mut().zip(r.iter()).for_each(|(d, v)| *d = -v);
+        if !solve_small(jac, delta, n) {
             // singular Jacobian: a plain fixed-point step y <- ln eta_law
-            delta.iter_mut().zip(&r).for_each(|(d, v)| *d = -v);
+            delta.iter_mut().zip(r.iter()).for_each(|(d, v)| *d = -v);
         }
         let mut lambda = 1.0;
         loop {
             for k in 0..n {
                 yp[k] = y[k] + lambda * delta[k];
             }
-            residual(&yp, &mut scratch, &mut rp, &mut sp)?;
-            let rn = norm(&rp);
+            residual(yp, scratch, rp, sp)?;
+            let rn = norm(rp);
             if rn < res || lambda < 1e-3 {
                 std::mem::swap(&mut y, &mut yp);
                 std::mem::swap(&mut r, &mut rp);
@@ -513,10 +528,10 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     for k in 0..n {
         eta_eff[k] = y[k].exp();
     }
-    let profile = velocity_profile(rule, col, &eta_eff, rho)?;
+    let profile = velocity_profile(rule, col, eta_eff, rho)?;
     Ok(ShearThinningProfile {
         profile,
-        eta_eff,
+        eta_eff: eta_eff.to_vec(),
         iterations,
         residual: res,
         converged: res <= opts.tol,
