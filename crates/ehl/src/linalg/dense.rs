@@ -327,8 +327,8 @@ pub(crate) fn dot4(a: &[f64], b: &[f64]) -> f64 {
 /// Solves a small dense system A x = b in place with [`SmallLu`]'s factorisation (A row-major
 /// n x n, overwritten by its factors; b becomes x); false if A is singular or not finite.
 pub fn solve_small(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    // the pivots on the stack up to 64 unknowns (the film's shear-thinning Newton step calls
-    // this once per column and iteration, with the points across the film, at most 33)
+    // the pivots on the stack up to 64 unknowns: the systems are small (Anderson mixing's
+    // history, 4-5) and solved often (every film iteration of every grid line)
     let mut stack = [0usize; 64];
     let mut heap = Vec::new();
     let piv: &mut [usize] = if n <= stack.len() {

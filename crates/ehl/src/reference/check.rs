@@ -87,7 +87,6 @@ pub struct TransientCheck {
     pub frames_bytes: f64,
 }
 
-/// Builds the report of a validated case.
 /// The thermal loading L = eta0 beta u_e^2 / k_f of a case with `[thermal]`
 /// ([`super::thermal::thermal_loading`]; None without `[thermal]`, `[motion]` or `[lubricant]`).
 pub fn case_thermal_loading(case: &Case) -> Option<f64> {
@@ -105,6 +104,7 @@ pub fn case_thermal_loading(case: &Case) -> Option<f64> {
     ))
 }
 
+/// Builds the report of a validated case.
 pub fn check_report(case: &Case) -> CheckReport {
     let geom = Geometry::new(case);
     let h = geom.hertz();

@@ -418,9 +418,9 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     }
     let n = rule.len();
     let h = col.h;
-    // every per-point vector and the Jacobian in one allocation: this runs once per film
-    // column per film iteration, and its ~15 small vectors were 11 % of a thermal transient
-    // run (perf, the thesis pit at 128 x 128)
+    // every per-point vector in one allocation: this runs once per film column per film
+    // iteration, and its ~15 small vectors were 11 % of a thermal transient run (perf, the
+    // thesis pit at 128 x 128)
     let mut work = vec![0.0; 16 * n];
     let (ln_eta, rest) = work.split_at_mut(n);
     let (eta_eff, rest) = rest.split_at_mut(n);
@@ -534,7 +534,7 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
 ///
 /// U = s (tau_x, tau_y) / |tau|^2 and V = (dta, dtb) (n x 2 each). Solved by
 /// Sherman-Morrison-Woodbury in O(n): delta = z + W (I - V^T W)^-1 V^T z with z = -D^-1 r and
-/// W = D^-1 U (the dense LU it replaces was 12 % of a thermal run). `w` is scratch (n each).
+/// W = D^-1 U (the dense LU it replaces was 12 % of a thermal run). `wa`, `wb` hold W.
 /// False where D or the 2 x 2 capacitance matrix is singular or not finite.
 fn newton_step(
     r: &[f64],
