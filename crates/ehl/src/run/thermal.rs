@@ -38,7 +38,7 @@ pub fn solve(
         &mut contact,
         observer,
     );
-    if let Some(hint) = loading_hint(case, &result.ehl) {
+    if let Some(hint) = loading_hint(case, result.ehl.converged, &result.ehl.termination) {
         result.ehl.termination.push_str(&hint);
     }
     let fields = contact.fields(&result.ehl.film);
@@ -51,11 +51,12 @@ pub fn solve(
     })
 }
 
-/// What to add to the reason of a thermal solve `r` of `case` that failed at a thermal loading
-/// above [`CONVERGED_THERMAL_LOADING`] (None when it converged, was cancelled, or L is below).
-pub fn loading_hint(case: &Case, r: &EhlResult) -> Option<String> {
+/// What to add to the reason `termination` of a thermal run of `case`, steady or transient,
+/// that failed (`converged` false) at a thermal loading above [`CONVERGED_THERMAL_LOADING`]
+/// (None when it converged, was cancelled, has no `[thermal]`, or L is below).
+pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     let l = crate::reference::check::case_thermal_loading(case)?;
-    (!r.converged && r.termination != "cancelled" && l > CONVERGED_THERMAL_LOADING).then(|| {
+    (!converged && termination != "cancelled" && l > CONVERGED_THERMAL_LOADING).then(|| {
         format!(
             "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, where the thermal solver is not known to converge in pure rolling (docs/thermal.md, \"Left open\")"
         )

@@ -402,6 +402,10 @@ pub(super) fn solve(
             steps + 1
         )
     };
+    if let Some(hint) = super::thermal::loading_hint(case, summary.converged, &summary.termination)
+    {
+        summary.termination.push_str(&hint);
+    }
     if let Some(last_row) = record.timeline.last() {
         if let Some(f) = last_row.friction_coefficient {
             summary.friction_coefficient = Some(f);
