@@ -442,9 +442,9 @@ fn groove_case(extra: &str, sets: &[&str]) -> Case {
 /// A transient thermal run whose steady start fails above the known thermal loading says so
 /// too: the groove line in pure rolling at U = 3e-10 (L = 28) on the example's 256 cells, 2
 /// steps (~3 s; on 128 cells this start converges: the failure depends on the grid, which is
-/// why the message says "not known to converge"). Below it (the
-/// example's U = 1.3e-10 at SRR 0.3, L = 5.3: sliding converges there) a converged run says
-/// nothing (`a_groove_passes_through_the_thermal_line` covers that run's figures).
+/// why the message says "not known to converge"). A run that converges above the limit says
+/// nothing: the hint is added to failures only (the example at U = 1.3e-10 and SRR 0.3,
+/// L = 5.3, converges: `a_groove_passes_through_the_thermal_line`).
 #[test]
 fn a_transient_thermal_run_beyond_the_known_loading_says_so() {
     let c = groove_case(
