@@ -239,9 +239,10 @@ fn dot_portable(a: &[f32], b: &[f64]) -> f64 {
 
 /// Dense LU factors P A = L U with partial pivoting in double precision, kept for repeated
 /// solves of small systems: the leaves and coupling systems of [`super::hodlr`], and (through
-/// [`solve_small`]) the few-unknown systems of the film's Newton iteration across z and of
-/// Anderson mixing ([`super::anderson`]), where [`DenseLu`]'s single-precision factors would
-/// be too coarse (a Newton iteration to 1e-10) and its blocking pointless. Row-major; the
+/// [`solve_small`]) the few-unknown least-squares systems of Anderson mixing
+/// ([`super::anderson`]), where [`DenseLu`]'s single-precision factors would be too coarse and
+/// its blocking pointless. (The film's Newton step across z, which used it too, is now solved
+/// in O(n): `thermal::film::newton_step`.) Row-major; the
 /// multipliers of L are stored below the diagonal of the whole-row-swapped matrix (as LAPACK's
 /// `dgetf2`).
 #[derive(Debug, Clone)]

@@ -5,7 +5,7 @@
 //! * [`banded`]: banded LU with partial pivoting (the line solves of the Newton preconditioner);
 //! * [`dense`]: dense blocked LU with partial pivoting (the fallback preconditioner of a
 //!   transient infinite line contact), and small double-precision LU factors (`SmallLu`: the
-//!   HODLR leaves, the film's Newton iteration, Anderson mixing);
+//!   HODLR leaves and coupling systems, Anderson mixing);
 //! * [`multigrid`]: line-relaxation aggregation multigrid for a local line operator (the Newton
 //!   preconditioner on 2D grids);
 //! * [`hodlr`]: hierarchical off-diagonal low-rank approximate inverse (the preconditioner of
