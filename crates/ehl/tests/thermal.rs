@@ -217,8 +217,9 @@ fn the_thermal_line_converges_with_the_grid() {
 #[test]
 #[ignore = "long validation: cargo test --release -p ehl --test thermal -- --ignored"]
 fn film_reduction_sweep() {
-    for u in [3.6e-11, 7.3e-11, 1.1e-10] {
-        for nx in [256, 512] {
+    // at 512 cells the runs from U = 2.2e-10 (L = 5) do not settle (docs/thermal.md)
+    for u in [3.6e-11, 7.3e-11, 1.1e-10, 1.55e-10, 2.2e-10, 3.1e-10] {
+        for nx in [256, 512].into_iter().filter(|&n| n == 256 || u < 2e-10) {
             let (r, l, mw, gu) = reduction(u, nx);
             println!(
                 "U {u:e} nx {nx}: L {l:.3}: thermal/isothermal {r:.4}, Murch-Wilson {mw:.4}, Gupta {gu:.4}"
@@ -227,45 +228,134 @@ fn film_reduction_sweep() {
     }
 }
 
-/// A thermal run beyond the loading at which the solver is known to converge says so: pure
-/// rolling on the Table 3.7 line with the Barus oil at U = 2.2e-10 (L = 5.0, twice the
-/// `CONVERGED_THERMAL_LOADING` of 2.5) does not converge, and its reason names the loading and
-/// the limit; `ehl check` notes it beforehand. Below the limit (U = 7.3e-11, L = 0.55) the run
-/// converges and neither says anything. The failing run takes ~0.1 s (it stops at the first
-/// outer iteration).
+/// A steady thermal solve whose temperature solve fails is solved again with 11 points across
+/// the film, and the run says so: pure rolling on the Barus line at U = 2.2e-10 (L = 5.0,
+/// 256 cells), where 7 points let the thick inlet's film temperature run away (a negative
+/// density). The retry starts afresh, so it must give what a run asking for 11 points gives
+/// (to 1e-9: the same arithmetic, summed in parallel), and that run warns of nothing.
+#[test]
+fn a_failed_temperature_solve_is_solved_again_with_more_points() {
+    let run = |extra: &[&str]| {
+        let mut sets = vec![
+            NEWTONIAN,
+            "motion.slide_to_roll=0.0",
+            "motion.dimensionless_speed=2.2e-10",
+            "lubricant.viscosity_model=\"barus\"",
+        ];
+        sets.extend(extra);
+        let s = solve(&case("[thermal]\nviscosity_beta = 0.03\n", &sets));
+        assert!(s.summary.converged, "{extra:?}: {}", s.summary.termination);
+        s.summary
+    };
+    let retried = run(&[]);
+    let warned = |w: &[String]| {
+        w.iter().any(|w| {
+            w.contains("failed with thermal.points_across_film = 7")
+                && w.contains("solved again with 11 points")
+        })
+    };
+    assert!(warned(&retried.warnings), "{:?}", retried.warnings);
+    let direct = run(&["thermal.points_across_film=11"]);
+    assert!(
+        !direct.warnings.iter().any(|w| w.contains("solved again")),
+        "{:?}",
+        direct.warnings
+    );
+    for (name, a, b) in [
+        (
+            "central film",
+            retried.central_film_m,
+            direct.central_film_m,
+        ),
+        ("minimum film", retried.min_film_m, direct.min_film_m),
+        (
+            "film temperature",
+            retried.max_film_temperature_k,
+            direct.max_film_temperature_k,
+        ),
+    ] {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert!(
+            (a / b - 1.0).abs() < 1e-9,
+            "{name}: retried {a:e}, direct {b:e}"
+        );
+    }
+}
+
+/// A thermal run that fails above the loading below which the solver converged at every
+/// slide-to-roll ratio measured says so: the Roelands-Carreau example line at U = 2.2e-10
+/// (L = 6.8) and SRR 1 on 256 cells does not settle in its 80 outer iterations (~1.5 s), and
+/// its reason names the loading, the limit and the factors' residual; `ehl check` notes it
+/// beforehand. The same line at U = 7.3e-11 (L = 0.75) converges and neither says anything.
 #[test]
 fn a_thermal_run_beyond_the_known_loading_says_so() {
-    let high = |u: &str| {
-        let speed = format!("motion.dimensionless_speed={u}");
-        case(
-            "[thermal]\nviscosity_beta = 0.03\n",
-            &[
-                NEWTONIAN,
-                "motion.slide_to_roll=0.0",
-                &speed,
-                "lubricant.viscosity_model=\"barus\"",
-            ],
-        )
+    let line = |u: &str| {
+        let sets = [
+            "grid.nx=256".to_string(),
+            "motion.slide_to_roll=1.0".to_string(),
+            format!("motion.dimensionless_speed={u}"),
+        ];
+        parse_str(THERMAL, "ehl_thermal_line.toml", &sets).unwrap()
     };
-    let c = high("2.2e-10");
+    let c = line("2.2e-10");
     let l = ehl::reference::check::case_thermal_loading(&c).unwrap();
-    assert!((l - 5.01).abs() < 0.01, "L {l}");
+    assert!((l - 6.77).abs() < 0.01, "L {l}");
     let s = solve(&c);
     assert!(!s.summary.converged);
     let why = &s.summary.termination;
     assert!(
-        why.contains("thermal loading L = eta0 beta u_e^2/k_f is 5.01, above 2.5"),
+        why.contains("thermal loading L = eta0 beta u_e^2/k_f is 6.77, above 2.5")
+            && why.contains("the Reynolds factors by"),
         "{why}"
     );
     let note = ehl::reference::check::check_report(&c).to_string();
     assert!(note.contains("note: L is above 2.5"), "{note}");
 
-    let c = high("7.3e-11");
+    let c = line("7.3e-11");
     let s = solve(&c);
     assert!(s.summary.converged, "{}", s.summary.termination);
     assert!(!s.summary.termination.contains("thermal loading"));
     let note = ehl::reference::check::check_report(&c).to_string();
     assert!(!note.contains("note: L is above"), "{note}");
+}
+
+/// The fixed point stops within the tolerance it states: on the Roelands-Carreau example line
+/// at U = 2.2e-10 (L = 6.8), SRR 0.3 and 512 cells, the default stop (0.05 K, films and the
+/// Reynolds factors' residual 1e-4) against a tightly converged run (0.002 K, 1e-6, up to 400
+/// outer iterations): central and minimum film and friction within the film tolerance, 1e-4.
+/// Measured 9e-6 and 7e-6 on the films, 9e-6 on the friction. The stop before the factors'
+/// residual (an estimate from the change between outer iterations) stopped this run with its
+/// central film 5.2e-4 off, its minimum film 3.4e-4 off. ~10 s.
+#[test]
+fn the_thermal_fixed_point_stops_within_its_tolerance() {
+    let run = |extra: &[&str]| {
+        let mut sets = vec![
+            "grid.nx=512".to_string(),
+            "motion.slide_to_roll=0.3".to_string(),
+            "motion.dimensionless_speed=2.2e-10".to_string(),
+        ];
+        sets.extend(extra.iter().map(|s| s.to_string()));
+        let s = solve(&parse_str(THERMAL, "ehl_thermal_line.toml", &sets).unwrap());
+        assert!(s.summary.converged, "{extra:?}: {}", s.summary.termination);
+        s.summary
+    };
+    let d = run(&[]);
+    let t = run(&[
+        "thermal.tolerance=0.002",
+        "thermal.film_tolerance=1e-6",
+        "thermal.max_iterations=400",
+    ]);
+    for (name, a, b) in [
+        ("central film", d.central_film_m, t.central_film_m),
+        ("minimum film", d.min_film_m, t.min_film_m),
+        ("friction", d.friction_coefficient, t.friction_coefficient),
+    ] {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert!(
+            (a / b - 1.0).abs() < 1e-4,
+            "{name}: default {a:.7e}, tight {b:.7e}"
+        );
+    }
 }
 
 /// (h_thermal / h_isothermal, L, Murch-Wilson, Gupta) at the dimensionless speed `u`.
@@ -307,17 +397,25 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 /// * a Grubin inlet with the exact factor gives half of Murch-Wilson's reduction (now
 ///   `reference::thermal::grubin_thermal_ratio`: `film_reduction_against_a_thermal_grubin_inlet`).
 ///
+/// At L = 5.0 and 9.95 (U = 2.2e-10 and 3.1e-10, where the runs are solved again with 11
+/// points across the film) it is 0.81 of the fits' mean at both.
+///
 /// The bounds below record the present state: 0.45..1.1 of the fits' mean. A closer agreement
 /// keeps the test passing; losing half of the present reduction fails it.
 #[test]
 fn film_reduction_against_the_inlet_heating_fits() {
-    let (r1, l1, mw1, gu1) = reduction(3.6e-11, 256);
-    let (r2, l2, mw2, gu2) = reduction(7.3e-11, 256);
-    assert!(
-        l1 < l2 && r2 < r1 && r1 < 1.0,
-        "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}"
-    );
-    for (r, l, mw, gu) in [(r1, l1, mw1, gu1), (r2, l2, mw2, gu2)] {
+    let all: Vec<_> = [3.6e-11, 7.3e-11, 2.2e-10, 3.1e-10]
+        .iter()
+        .map(|&u| reduction(u, 256))
+        .collect();
+    for w in all.windows(2) {
+        let ((r1, l1, ..), (r2, l2, ..)) = (w[0], w[1]);
+        assert!(
+            l1 < l2 && r2 < r1 && r1 < 1.0,
+            "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}"
+        );
+    }
+    for (r, l, mw, gu) in all {
         let ratio = (1.0 - r) / (1.0 - 0.5 * (mw + gu));
         assert!(
             (0.45..1.1).contains(&ratio),
@@ -440,18 +538,17 @@ fn groove_case(extra: &str, sets: &[&str]) -> Case {
 }
 
 /// A transient thermal run whose steady start fails above the known thermal loading says so
-/// too: the groove line in pure rolling at U = 3e-10 (L = 28) on the example's 256 cells, 2
-/// steps (~3 s; on 128 cells this start converges: the failure depends on the grid, which is
-/// why the message says "not known to converge"). A run that converges above the limit says
-/// nothing: the hint is added to failures only (the example at U = 1.3e-10 and SRR 0.3,
-/// L = 5.3, converges: `a_groove_passes_through_the_thermal_line`).
+/// too: the groove line at SRR 1 and U = 3e-10 (L = 28) on the example's 256 cells, 2 steps
+/// (~1.5 s). A run that converges above the limit says nothing: the hint is added to failures
+/// only (the example at U = 1.3e-10 and SRR 0.3, L = 5.3, converges:
+/// `a_groove_passes_through_the_thermal_line`).
 #[test]
 fn a_transient_thermal_run_beyond_the_known_loading_says_so() {
     let c = groove_case(
         OIL,
         &[
             "grid.nx=256",
-            "motion.slide_to_roll=0.0",
+            "motion.slide_to_roll=1.0",
             "motion.dimensionless_speed=3e-10",
             "motion.travel={ from = -0.6e-3, to = -0.58e-3, steps = 2 }",
         ],

@@ -334,4 +334,12 @@ pub use crate::thermal::solid::SolidThermal as BodyThermal;
 pub struct ThermalSpec {
     pub lubricant: ThermalLubricant,
     pub bodies: [BodyThermal; 2],
+    /// `[thermal]`'s `tolerance` (K): the film temperature's distance to the fixed point
+    /// ([`crate::ehl::thermal::ThermalParams::tolerance_k`])
+    pub tolerance_k: f64,
+    /// `film_tolerance`: the film's, relative to its thinnest, and the Reynolds factors'
+    /// residual ([`crate::ehl::thermal::ThermalParams::film_tolerance`], `factor_tolerance`)
+    pub film_tolerance: f64,
+    /// `max_iterations`: most outer (Reynolds-temperature) iterations of a steady solve
+    pub max_iterations: usize,
 }

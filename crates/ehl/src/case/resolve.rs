@@ -2064,9 +2064,31 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
         rheology: tables,
     };
     lub.rheology = spec.rheology.at(&lub.rheology, t0);
+    let defaults = crate::ehl::thermal::ThermalParams::default();
+    let tolerance_k = s
+        .positive("tolerance", "K")?
+        .unwrap_or(defaults.tolerance_k);
+    let film_tolerance = s
+        .positive("film_tolerance", "relative")?
+        .unwrap_or(defaults.film_tolerance);
+    if film_tolerance >= 0.1 {
+        return Err(s.err(
+            "film_tolerance",
+            format!(
+                "a film tolerance relative to the thinnest film must be below 0.1 (e.g. 1e-4), found {}",
+                fmt_num(film_tolerance)
+            ),
+        ));
+    }
+    let max_iterations = s
+        .count("max_iterations", "outer iterations", 1)?
+        .unwrap_or(defaults.max_outer);
     Ok(Some(ThermalSpec {
         lubricant: spec,
         bodies,
+        tolerance_k,
+        film_tolerance,
+        max_iterations,
     }))
 }
 

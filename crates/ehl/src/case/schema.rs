@@ -124,6 +124,9 @@ const OTHER_KEYS: &[&str] = &[
     "thermal.conductivity",
     "thermal.heat_capacity",
     "thermal.points_across_film",
+    "thermal.tolerance",
+    "thermal.film_tolerance",
+    "thermal.max_iterations",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

@@ -949,6 +949,24 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
     assert_eq!(th.bodies[0].conductivity, 20.0);
     assert_eq!(th.bodies[1].density, 7000.0);
     assert_eq!(th.lubricant.viscosity_temperature.beta, 0.03);
+    // the fixed point's controls: defaults, and given
+    assert_eq!(
+        (th.tolerance_k, th.film_tolerance, th.max_iterations),
+        (0.05, 1e-4, 80)
+    );
+    let th = parse(
+        &format!(
+            "{EHL}\n[thermal]\ntolerance = 0.01\nfilm_tolerance = 1e-5\nmax_iterations = 200\n"
+        ),
+        &[],
+    )
+    .unwrap()
+    .thermal
+    .unwrap();
+    assert_eq!(
+        (th.tolerance_k, th.film_tolerance, th.max_iterations),
+        (0.01, 1e-5, 200)
+    );
 
     let cases: &[(&str, &str, &str)] = &[
         (
@@ -975,6 +993,17 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
             "\n[thermal]\nthermal_expansion = 0.01\n",
             "thermal.thermal_expansion",
             "vanish",
+        ),
+        ("\n[thermal]\ntolerance = 0.0\n", "thermal.tolerance", ""),
+        (
+            "\n[thermal]\nfilm_tolerance = 0.5\n",
+            "thermal.film_tolerance",
+            "below 0.1",
+        ),
+        (
+            "\n[thermal]\nmax_iterations = 0\n",
+            "thermal.max_iterations",
+            "at least 1",
         ),
     ];
     for (extra, key, word) in cases {

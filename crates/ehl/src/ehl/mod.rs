@@ -207,6 +207,9 @@ pub enum Termination {
         /// the residual the last temperature update left in the film and at the surfaces (K,
         /// [`crate::thermal::ThermalContact::inner_residual`])
         residual_k: f64,
+        /// a steady run: the Reynolds factors' own residual, max |ln G(F) - ln F|
+        /// ([`crate::ehl::thermal::ThermalParams::factor_tolerance`])
+        factor_residual: Option<f64>,
     },
     /// thermal runs: the temperature solve failed (why)
     ThermalFailed(String),
@@ -237,10 +240,20 @@ impl std::fmt::Display for Termination {
                 change_k,
                 film_change,
                 residual_k,
-            } => write!(
-                f,
-                "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K, the film by {film_change:.1e} of its thinnest, and the temperature solve left a residual of {residual_k:.3} K"
-            ),
+                factor_residual,
+            } => {
+                write!(
+                    f,
+                    "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K, the film by {film_change:.1e} of its thinnest"
+                )?;
+                if let Some(r) = factor_residual {
+                    write!(f, ", the Reynolds factors by {r:.1e} (log)")?;
+                }
+                write!(
+                    f,
+                    ", and the temperature solve left a residual of {residual_k:.3} K"
+                )
+            }
             Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(
                 f,

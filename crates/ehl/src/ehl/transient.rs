@@ -493,6 +493,7 @@ fn run(
                         change_k: change,
                         film_change,
                         residual_k: contact.inner_residual(),
+                        factor_residual: None,
                     });
                     break;
                 }

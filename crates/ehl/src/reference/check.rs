@@ -431,7 +431,7 @@ impl fmt::Display for CheckReport {
             if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
                 writeln!(
                     f,
-                    "  note: L is above {}, the largest at which the thermal solver is known to converge in pure rolling; a run may fail in the thick inlet film (docs/thermal.md, \"Left open\")",
+                    "  note: L is above {}, below which the thermal solver converged at every slide-to-roll ratio measured; with sliding a run may not settle (docs/thermal.md, \"Left open\")",
                     crate::ehl::thermal::CONVERGED_THERMAL_LOADING
                 )?;
             }

@@ -33,7 +33,7 @@ pub fn solve(
     let mut result = solve_thermal(
         problem,
         params,
-        &ThermalParams::default(),
+        &params_for(case),
         iso,
         &mut contact,
         observer,
@@ -51,6 +51,19 @@ pub fn solve(
     })
 }
 
+/// The thermal fixed point's controls for `case`: the defaults with `[thermal]`'s
+/// `tolerance`, `film_tolerance` (also the factors' residual) and `max_iterations`.
+pub fn params_for(case: &Case) -> ThermalParams {
+    let mut p = ThermalParams::default();
+    if let Some(t) = &case.thermal {
+        p.tolerance_k = t.tolerance_k;
+        p.film_tolerance = t.film_tolerance;
+        p.factor_tolerance = t.film_tolerance;
+        p.max_outer = t.max_iterations;
+    }
+    p
+}
+
 /// What to add to the reason `termination` of a thermal run of `case`, steady or transient,
 /// that failed (`converged` false) at a thermal loading above [`CONVERGED_THERMAL_LOADING`]
 /// (None when it converged, was cancelled, has no `[thermal]`, or L is below).
@@ -58,7 +71,7 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
     let l = crate::reference::check::case_thermal_loading(case)?;
     (!converged && termination != "cancelled" && l > CONVERGED_THERMAL_LOADING).then(|| {
         format!(
-            "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, where the thermal solver is not known to converge in pure rolling (docs/thermal.md, \"Left open\")"
+            "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, where the thermal solver is not known to converge with sliding (docs/thermal.md, \"Left open\")"
         )
     })
 }
@@ -97,6 +110,15 @@ pub fn summarise_contact(
     mu: Option<f64>,
     summary: &mut Summary,
 ) {
+    if let Some(spec) = &case.thermal {
+        let asked = spec.lubricant.points_across_film;
+        if contact.nz() != asked {
+            summary.warnings.push(format!(
+                "the temperature solve failed with thermal.points_across_film = {asked}; the run was solved again with {} points across the film: set them in the case to start there",
+                contact.nz()
+            ));
+        }
+    }
     let g = contact.grid();
     let argmax = |v: &[f64]| {
         (0..v.len()).fold(0, |m, k| {

@@ -12,7 +12,6 @@
 
 use super::{film_at, Progress};
 use crate::case::{Case, Travel};
-use crate::ehl::thermal::ThermalParams;
 use crate::ehl::{
     solve_transient, solve_transient_thermal, EhlParams, EhlProblem, MovingSurface, StepResult,
     TimeScheme, TransientEnd, TransientParams, TransientProblem,
@@ -365,7 +364,7 @@ pub(super) fn solve(
         Some(c) => solve_transient_thermal(
             &problem,
             &params,
-            &ThermalParams::default(),
+            &super::thermal::params_for(case),
             c,
             &mut observer,
         ),

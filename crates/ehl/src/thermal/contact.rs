@@ -266,6 +266,25 @@ impl ThermalContact {
         })
     }
 
+    /// Resolves the film with `nz` collocation points across it from now on (at least 3), and
+    /// starts the temperatures again at the inlet's, as a new contact would: the bodies'
+    /// moving-heat-source tables are kept.
+    pub fn set_points_across_film(&mut self, nz: usize) {
+        let nz = nz.max(3);
+        let (g, t0) = (self.grid, self.t0());
+        self.laws.thermal.points_across_film = nz;
+        self.rule = Lobatto::new(nz);
+        self.film = vec![vec![t0; g.nx * nz]; g.ny];
+        self.thinning = vec![vec![f64::NAN; g.nx * nz]; g.ny];
+        self.surface = [vec![t0; g.len()], vec![t0; g.len()]];
+        self.lines = vec![None; g.ny];
+        self.start = vec![0; g.ny];
+        self.active = vec![false; g.len()];
+        self.material = vec![false; g.len()];
+        self.step = None;
+        self.residual = [f64::INFINITY; 2];
+    }
+
     /// Starts a time step of `dt` seconds from the present temperatures (a transient run):
     /// until [`ThermalContact::end_steps`], every [`ThermalContact::update`] solves the film's
     /// energy equation with its time derivatives against this level (backward Euler; see
