@@ -431,7 +431,7 @@ impl fmt::Display for CheckReport {
             if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
                 writeln!(
                     f,
-                    "  note: L is above {}, below which the thermal solver converged at every slide-to-roll ratio measured; with sliding a run may not settle (docs/thermal.md, \"Left open\")",
+                    "  note: L is above {}, below which the thermal solver converged in every case measured; above it a run may not settle (with sliding, or on a fine 2D grid) (docs/thermal.md, \"Left open\")",
                     crate::ehl::thermal::CONVERGED_THERMAL_LOADING
                 )?;
             }
