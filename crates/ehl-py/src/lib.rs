@@ -532,6 +532,24 @@ impl PyCase {
         } else {
             d.set_item("transient", py.None())?;
         }
+        if let Some(t) = &r.thermal {
+            let e = PyDict::new(py);
+            e.set_item("inlet_temperature_k", t.inlet_temperature)?;
+            e.set_item("viscosity_beta_1_k", t.beta)?;
+            e.set_item("thermal_loading_L", t.loading)?;
+            e.set_item("murch_wilson_film_ratio", t.murch_wilson)?;
+            e.set_item("gupta_film_ratio", t.gupta)?;
+            e.set_item("peclet_1", t.peclet[0])?;
+            e.set_item("peclet_2", t.peclet[1])?;
+            e.set_item("points_across_film", t.points_across_film)?;
+            e.set_item(
+                "above_converged_loading",
+                t.loading > ehl::ehl::thermal::CONVERGED_THERMAL_LOADING,
+            )?;
+            d.set_item("thermal", e)?;
+        } else {
+            d.set_item("thermal", py.None())?;
+        }
         Ok(d)
     }
 

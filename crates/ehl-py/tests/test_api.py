@@ -40,6 +40,24 @@ def test_from_file_set_check():
     assert "ehl.Case(" in repr(c) and "load 5000.0 N" in repr(c)
 
 
+def test_check_gives_the_thermal_figures():
+    c = ehl.Case.from_file(example("ehl_thermal_line.toml"))
+    d = c.check()
+    t = d["thermal"]
+    # L = eta0 beta u_e^2 / k_f with u_e = U E' R / eta0 (the example: eta0 0.04 Pa s, k_f 0.14)
+    u_e = d["U"] * d["reduced_modulus_pa"] * d["reduced_radius_m"] / 0.04
+    assert t["thermal_loading_L"] == pytest.approx(0.04 * t["viscosity_beta_1_k"] * u_e**2 / 0.14, rel=1e-12)
+    assert 0 < t["gupta_film_ratio"] < t["murch_wilson_film_ratio"] < 1
+    assert t["points_across_film"] == 7 and t["inlet_temperature_k"] == 313.0
+    assert not t["above_converged_loading"]
+    # L grows with the square of the speed
+    c.set("motion.dimensionless_speed", 2 * c.get("motion.dimensionless_speed"))
+    t2 = c.check()["thermal"]
+    assert t2["thermal_loading_L"] == pytest.approx(4 * t["thermal_loading_L"], rel=1e-12)
+    assert t2["above_converged_loading"]
+    assert ehl.Case.from_file(example("ehl_friction_line.toml")).check()["thermal"] is None
+
+
 def test_from_toml_and_from_dict_give_the_same_case():
     path = example("dry_roller_mirror1_psi.toml")
     a = ehl.Case.from_file(path)

@@ -310,6 +310,10 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
     );
     let note = ehl::reference::check::check_report(&c).to_string();
     assert!(note.contains("note: L is above 2.5"), "{note}");
+    assert!(
+        note.contains("7 points across the film lose accuracy at high L"),
+        "{note}"
+    );
 
     let c = line("7.3e-11");
     let s = solve(&c);

@@ -68,6 +68,8 @@ pub struct ThermalCheck {
     pub gupta: f64,
     /// Peclet numbers U_k b / (2 kappa_k) of both bodies
     pub peclet: [f64; 2],
+    /// collocation points across the film (`thermal.points_across_film`)
+    pub points_across_film: usize,
 }
 
 /// The time stepping of a transient case, as `ehl check` prints it (SI).
@@ -217,6 +219,7 @@ pub fn check_report(case: &Case) -> CheckReport {
             inlet_temperature: tl.inlet_temperature,
             beta,
             loading: l,
+            points_across_film: tl.points_across_film,
             murch_wilson: super::thermal::murch_wilson(l),
             gupta: super::thermal::gupta(l, srr, report.hertz.ph / report.hertz.e_red),
             peclet: [
@@ -434,6 +437,13 @@ impl fmt::Display for CheckReport {
                     "  note: L is above {}, below which the thermal solver converged in every case measured; above it a run may not settle (with sliding, or on a fine 2D grid) (docs/thermal.md, \"Left open\")",
                     crate::ehl::thermal::CONVERGED_THERMAL_LOADING
                 )?;
+                if t.points_across_film < 11 {
+                    writeln!(
+                        f,
+                        "  note: {} points across the film lose accuracy at high L (with 7 the central film was 0.34 % off 21 points at L = 6.8, SRR 0.3; with 15, 6e-6): thermal.points_across_film = 15 for accuracy",
+                        t.points_across_film
+                    )?;
+                }
             }
         }
         Ok(())
