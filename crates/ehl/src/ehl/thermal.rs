@@ -118,7 +118,7 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// converged at every slide-to-roll ratio measured (docs/thermal.md, "Left open"). On the thesis
 /// Table 3.7 line with the Roelands-Carreau example oil (`ehl_thermal_line.toml`) it converged
 /// in pure rolling up to L = 22 (from L ~ 3 with the retry at 11 points across the film), at
-/// SRR 0.05 up to 13, at SRR 0.3 up to 6.8 but not at 9.5, and at SRR 1 up to 2.0 but not at
+/// SRR 0.05 up to 13, at SRR 0.3 up to 4.6 but not at 6.8, and at SRR 1 up to 2.0 but not at
 /// 3.2, where the outer fixed point keeps moving by tenths of a kelvin; the thesis pit case on
 /// the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128 but not at 256 x 256. A run,
 /// steady or transient, that fails above it says so in its reason
