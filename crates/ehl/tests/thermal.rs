@@ -350,37 +350,46 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
 }
 
 /// The fixed point stops within the tolerance it states: on the Roelands-Carreau example line
-/// (`ehl_thermal_line.toml`: 512 cells, SRR 0.3, L = 0.75), the default stop (0.05 K, films
-/// and the Reynolds factors' residual 1e-4) against a tightly converged run (0.002 K, 1e-6, up
-/// to 400 outer iterations): central and minimum film and friction within the film tolerance,
-/// 1e-4. Measured 1.5e-6 on the central film. The stop before the factors' residual (an
-/// estimate from the change between outer iterations) left this example's central film
-/// 1.1e-4 off, and the same line at U = 2.2e-10 5.2e-4 off. ~2 s.
+/// (`ehl_thermal_line.toml`: 512 cells, SRR 0.3) at its own speed (L = 0.75) and at
+/// U = 2.2e-10 (L = 6.8), the default stop (0.05 K, films and the Reynolds factors' residual
+/// 1e-4) against a tightly converged run (0.002 K, 1e-6, up to 400 outer iterations): central
+/// and minimum film and friction within the film tolerance, 1e-4. Measured 1.5e-6 and 1.2e-5
+/// on the central film. The stop before the factors' residual (an estimate from the change
+/// between outer iterations) left them 1.1e-4 and 5.2e-4 off. ~8 s.
 #[test]
 fn the_thermal_fixed_point_stops_within_its_tolerance() {
-    let run = |extra: &[&str]| {
-        let mut sets = vec!["motion.slide_to_roll=0.3".to_string()];
-        sets.extend(extra.iter().map(|s| s.to_string()));
-        let s = solve(&parse_str(THERMAL, "ehl_thermal_line.toml", &sets).unwrap());
-        assert!(s.summary.converged, "{extra:?}: {}", s.summary.termination);
-        s.summary
-    };
-    let d = run(&[]);
-    let t = run(&[
-        "thermal.tolerance=0.002",
-        "thermal.film_tolerance=1e-6",
-        "thermal.max_iterations=400",
-    ]);
-    for (name, a, b) in [
-        ("central film", d.central_film_m, t.central_film_m),
-        ("minimum film", d.min_film_m, t.min_film_m),
-        ("friction", d.friction_coefficient, t.friction_coefficient),
-    ] {
-        let (a, b) = (a.unwrap(), b.unwrap());
-        assert!(
-            (a / b - 1.0).abs() < 1e-4,
-            "{name}: default {a:.7e}, tight {b:.7e}"
-        );
+    for speed in ["7.3e-11", "2.2e-10"] {
+        let run = |extra: &[&str]| {
+            let mut sets = vec![
+                "motion.slide_to_roll=0.3".to_string(),
+                format!("motion.dimensionless_speed={speed}"),
+            ];
+            sets.extend(extra.iter().map(|s| s.to_string()));
+            let s = solve(&parse_str(THERMAL, "ehl_thermal_line.toml", &sets).unwrap());
+            assert!(
+                s.summary.converged,
+                "U {speed} {extra:?}: {}",
+                s.summary.termination
+            );
+            s.summary
+        };
+        let d = run(&[]);
+        let t = run(&[
+            "thermal.tolerance=0.002",
+            "thermal.film_tolerance=1e-6",
+            "thermal.max_iterations=400",
+        ]);
+        for (name, a, b) in [
+            ("central film", d.central_film_m, t.central_film_m),
+            ("minimum film", d.min_film_m, t.min_film_m),
+            ("friction", d.friction_coefficient, t.friction_coefficient),
+        ] {
+            let (a, b) = (a.unwrap(), b.unwrap());
+            assert!(
+                (a / b - 1.0).abs() < 1e-4,
+                "U {speed}: {name}: default {a:.7e}, tight {b:.7e}"
+            );
+        }
     }
 }
 
