@@ -113,6 +113,10 @@ impl Default for ThermalParams {
 /// ([`ThermalParams::refined_points`]).
 pub const REFINED_POINTS_ACROSS_FILM: usize = 11;
 
+/// The outer Anderson mixing drops its history after this many outer iterations without the
+/// factors' residual falling by 10 %.
+const ANDERSON_RESTART: usize = 5;
+
 /// Shorter steps of the Reynolds factors tried when the Newton solve fails after an update,
 /// each a quarter of the last (down to 1/256 of it).
 const FACTOR_BACKTRACKS: usize = 4;
@@ -121,8 +125,8 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// converged at every slide-to-roll ratio measured (docs/thermal.md, "Left open"). On the thesis
 /// Table 3.7 line with the Roelands-Carreau example oil (`ehl_thermal_line.toml`) it converged
 /// in pure rolling up to L = 22 (from L ~ 3 with the retry at 11 points across the film), at
-/// SRR 0.05 up to 13, at SRR 0.3 up to 9.5, and at SRR 1 up to 3.2 (in 80 outer iterations)
-/// but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin; the thesis
+/// SRR 0.05 up to 13, at SRR 0.3 up to 9.5, and at SRR 1 up to 3.2 but not at 6.8 (512
+/// cells), where the outer fixed point keeps moving by tenths of a kelvin; the thesis
 /// pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128 but not at
 /// 256 x 256. A run, steady or transient, that fails above it says so in its reason
 /// ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
@@ -234,6 +238,9 @@ fn run(
     let mut h_prev: Vec<f64> = vec![f64::NAN; n];
     let (mut settled, mut film_change) = (false, f64::INFINITY);
     let mut mixing = Anderson::new(thermal.anderson);
+    // the smallest factor residual since the last restart of the mixing, and the outer
+    // iterations since it last fell by 10 %
+    let (mut best_residual, mut stuck) = (f64::INFINITY, 0usize);
     // the Reynolds factors' own residual (see factor_residual)
     let mut residual = f64::INFINITY;
     // the temperature solves' own controls, tightened near the end (final_film_iterations)
@@ -306,6 +313,21 @@ fn run(
             if !change.is_finite() {
                 // a cell solved for the first time: the history is of another problem
                 mixing.clear();
+            }
+            // a history that stopped reducing the residual is dropped (a restart, the usual
+            // safeguard of Anderson mixing): measured on the map's 24 cases it settled pure
+            // rolling at L = 6.8 in 47 outer iterations instead of 69 and SRR 1 at L = 3.2 in
+            // 49 instead of 80, and changed no other case
+            if residual < 0.9 * best_residual {
+                best_residual = residual;
+                stuck = 0;
+            } else {
+                stuck += 1;
+                if stuck >= ANDERSON_RESTART {
+                    mixing.clear();
+                    stuck = 0;
+                    best_residual = residual;
+                }
             }
             mix_factors(&mut factors, &fresh, &mut mixing, thermal.relaxation);
         }
