@@ -104,7 +104,16 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
         .cloned()
         .filter(|x| x.is_finite())
         .fold(t.inlet, f64::max);
-    let span = (tmax - t.inlet).max(1e-3);
+    // the colour scale reaches below T0 where the film cools below the inlet (the outlet's
+    // expansion at high speed: -50 K in pure rolling at L = 5), else it starts at T0
+    let tmin = t
+        .film_section
+        .iter()
+        .cloned()
+        .filter(|x| x.is_finite())
+        .fold(t.inlet, f64::min);
+    let lo = (tmin - t.inlet).min(0.0);
+    let span = (tmax - t.inlet - lo).max(1e-3);
     render_sized(path, (1000, 860), |root| {
         let (upper, lower) = root.split_vertically(430);
         let title = format!(
@@ -202,7 +211,7 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
                 let b = t.film_section[(k + 1) * g.nx + i];
                 let v = a + s * (b - a);
                 let c = if v.is_finite() {
-                    let (r, gg, bb) = ColorMap::Inferno.color((v - t.inlet) / span);
+                    let (r, gg, bb) = ColorMap::Inferno.color((v - t.inlet - lo) / span);
                     RGBColor(r, gg, bb)
                 } else {
                     RGBColor(255, 255, 255)
@@ -215,7 +224,7 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
             .margin_bottom(55)
             .margin_right(10)
             .right_y_label_area_size(70)
-            .build_cartesian_2d(0.0..1.0, 0.0..span)?;
+            .build_cartesian_2d(0.0..1.0, lo..lo + span)?;
         draw_colorbar_on(
             &mut barc,
             ColorMap::Inferno,
