@@ -98,20 +98,13 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
     };
     let mm = 1e3;
     let xs: Vec<f64> = (0..g.nx).map(|i| g.x(i) * mm).collect();
-    let tmax = t
-        .film_section
-        .iter()
-        .cloned()
-        .filter(|x| x.is_finite())
-        .fold(t.inlet, f64::max);
     // the colour scale reaches below T0 where the film cools below the inlet (the outlet's
     // expansion at high speed: -50 K in pure rolling at L = 5), else it starts at T0
-    let tmin = t
+    let (tmin, tmax) = t
         .film_section
         .iter()
-        .cloned()
         .filter(|x| x.is_finite())
-        .fold(t.inlet, f64::min);
+        .fold((t.inlet, t.inlet), |(a, b), &x| (a.min(x), b.max(x)));
     let lo = (tmin - t.inlet).min(0.0);
     let span = (tmax - t.inlet - lo).max(1e-3);
     render_sized(path, (1000, 860), |root| {
