@@ -947,8 +947,10 @@ pub const FLOOR_MARGIN: f64 = 30.0;
 
 /// How far below the coldest boundary temperature an iterate of [`solve_line`] may go on
 /// `line` (K): [`FLOOR_MARGIN`], or 1.5 times the adiabatic expansion cooling from the line's
-/// largest pressure when that is more, dT = alpha T p / (rho c) (alpha = -d ln rho / dT at that
-/// pressure and the hottest boundary temperature T); the floor stays above 150 K unless the
+/// largest pressure when that is more, dT = alpha T p / (rho c) (the isentropic
+/// (dT/dp)_s = alpha T / (rho c_p), taken at that pressure and the hottest boundary temperature
+/// T, alpha = -d ln rho / dT; the factor 1.5 is a margin, the floor being a guard, not a
+/// model); the floor stays above 150 K unless the
 /// fixed margin already puts it lower. The outlet's expansion is fast and nearly adiabatic: on
 /// the Table 3.7 line in pure rolling at L = 5 (p 0.7 GPa, dT_ad ~ 75 K) the converged film
 /// went 38 K below the surfaces there, and a fixed 30 K floor clamped it and kept the film's
@@ -1030,8 +1032,9 @@ mod tests {
     const T0: f64 = 313.0;
 
     /// The floor's margin: 30 K on an unloaded line and an incompressible oil; 1.5 times the
-    /// adiabatic cooling alpha T p / (rho c), computed here by hand, at 0.7 GPa with
-    /// alpha = 6.5e-4 1/K (1.5 x 74.6 K); held so that the floor stays at 150 K.
+    /// adiabatic cooling alpha T p / (rho c), computed here by hand, at 0.7 GPa with D =
+    /// 6.5e-4 1/K and the hottest boundary at 320 K (1.5 x 84.4 K = 126.7 K); held so that the
+    /// floor stays at 150 K on a line whose coldest boundary is 250 K.
     #[test]
     fn the_floor_leaves_room_for_adiabatic_expansion_cooling() {
         let law = |d: f64| ExpLaw {
