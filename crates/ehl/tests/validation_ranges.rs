@@ -226,3 +226,38 @@ fn mirror_levels_and_memory_are_bounded() {
     );
     assert!(parse_str(&text, "m.toml", &["solver.mirror_levels=16".into()]).is_ok());
 }
+
+/// A transient run whose features[0] moves more than `COARSE_CELLS_PER_STEP` cells a step says
+/// so in the summary, with the steps that give one cell (the groove example at 128 cells and 8
+/// steps: 1.55 * 200 / 8 / 4 = 9.7 cells a step); at about one cell a step it does not.
+#[test]
+fn a_transient_run_with_a_coarse_time_step_is_flagged() {
+    let text = example("ehl_transient_line_groove.toml");
+    let run = |steps: usize| {
+        let case = parse_str(
+            &text,
+            "g.toml",
+            &[
+                "grid.nx=128".into(),
+                "motion.travel.steps=".to_string() + &steps.to_string(),
+                "output.snapshots=[]".into(),
+            ],
+        )
+        .unwrap();
+        solve(&case, &Silent).unwrap().summary
+    };
+    let s = run(8);
+    let w: Vec<&String> = s
+        .warnings
+        .iter()
+        .filter(|w| w.contains("cells a step"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", s.warnings);
+    assert!(w[0].contains("motion.travel.steps = 78 gives one"), "{}", w[0]);
+    let s = run(78);
+    assert!(
+        !s.warnings.iter().any(|w| w.contains("cells a step")),
+        "{:?}",
+        s.warnings
+    );
+}

@@ -416,6 +416,13 @@ pub(super) fn solve(
             "the friction integral failed at {friction_failures} converged step(s); their friction_coefficient cells in timeline.csv are empty"
         ));
     }
+    let cells = kin.xp_speed.abs() * kin.dt / grid.dx;
+    if !case.features.is_empty() && cells > crate::reference::check::COARSE_CELLS_PER_STEP {
+        summary.warnings.push(format!(
+            "features[0] moved {cells:.1} cells a step: at more than about one a steep-walled feature's wall pressures depend on the step (docs/pits.md, \"Sharp edges and the time step\"); motion.travel.steps = {} gives one",
+            (kin.steps as f64 * cells).ceil()
+        ));
+    }
     // the extremes over the travel come from the converged steps (a step that did not converge
     // holds its best state, whose spikes are not the physics); from every step when none did
     let any_converged = record.timeline.iter().any(|r| r.converged);
