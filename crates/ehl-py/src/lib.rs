@@ -526,6 +526,8 @@ impl PyCase {
             e.set_item("u2_m_s", t.u.1)?;
             e.set_item("feature_cells_per_step", t.cells_per_step.0)?;
             e.set_item("film_cells_per_step", t.cells_per_step.1)?;
+            // the steps that give one cell a step where the case's are coarse, else None
+            e.set_item("steps_for_one_cell", t.steps_for_one_cell)?;
             e.set_item("frames_every", t.frames_every)?;
             e.set_item("frames_bytes", t.frames_bytes)?;
             d.set_item("transient", e)?;

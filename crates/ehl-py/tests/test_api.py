@@ -58,6 +58,19 @@ def test_check_gives_the_thermal_figures():
     assert ehl.Case.from_file(example("ehl_friction_line.toml")).check()["thermal"] is None
 
 
+def test_check_gives_the_steps_for_one_cell_a_step():
+    c = ehl.Case.from_file(example("ehl_transient_line_groove.toml"))
+    t = c.check()["transient"]
+    # the example moves its groove 1.55 cells a step: not coarse
+    assert t["steps_for_one_cell"] is None and 1 < t["feature_cells_per_step"] < 2
+    c.set("motion.travel.steps", 50)
+    t = c.check()["transient"]
+    assert t["steps_for_one_cell"] == math.ceil(50 * t["feature_cells_per_step"])
+    c.set("motion.travel.steps", t["steps_for_one_cell"])
+    t = c.check()["transient"]
+    assert t["steps_for_one_cell"] is None and t["feature_cells_per_step"] <= 1
+
+
 def test_from_toml_and_from_dict_give_the_same_case():
     path = example("dry_roller_mirror1_psi.toml")
     a = ehl.Case.from_file(path)

@@ -48,7 +48,9 @@ class Case:
         ``case_uses_same_laws``), the grid (``nx``, ``ny``, ``dx_m``, ``dy_m``,
         ``cells_across_2b``, ``cells_across_y``), ``memory_estimate_bytes`` and, for a
         transient case, ``transient`` (``steps``, ``dt_s``, ``x_p_from_m``, ``x_p_to_m``,
-        ``u1_m_s``, ``u2_m_s``, ...), for a thermal case ``thermal``
+        ``u1_m_s``, ``u2_m_s``, ``feature_cells_per_step``, ``steps_for_one_cell``: the
+        ``motion.travel.steps`` for one cell a step where the case's move features[0] by more
+        than 2, ...), for a thermal case ``thermal``
         (``inlet_temperature_k``, ``viscosity_beta_1_k``, ``thermal_loading_L`` =
         eta0 beta u_e^2 / k_f, ``murch_wilson_film_ratio`` and ``gupta_film_ratio``
         (h_thermal / h_isothermal of the classical fits), ``peclet_1``, ``peclet_2``,

@@ -76,8 +76,16 @@ pub struct ThermalCheck {
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges
 /// and the time step": the 1 um thesis pit's peak 1.40 / 1.23 / 1.17 GPa at 2.3 / 1.2 / 0.6
 /// cells a step; the Warhadpande & Sadeghi dent at 3.1 cells a step left 23 of 101 steps
-/// unconverged and reached 27 GPa, at 1 cell a step every step converged).
+/// unconverged and reached 32 GPa, at 1 cell a step every step converged).
 pub const COARSE_CELLS_PER_STEP: f64 = 2.0;
+
+/// The `motion.travel.steps` that move features[0] by one cell a step, when a run with
+/// features takes `steps` steps of more than [`COARSE_CELLS_PER_STEP`] cells each; None
+/// otherwise (no features: nothing steep moves).
+pub fn steps_for_one_cell(has_features: bool, steps: usize, cells_per_step: f64) -> Option<usize> {
+    (has_features && cells_per_step > COARSE_CELLS_PER_STEP)
+        .then(|| (steps as f64 * cells_per_step).ceil() as usize)
+}
 
 /// The time stepping of a transient case, as `ehl check` prints it (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,6 +99,8 @@ pub struct TransientCheck {
     pub u: (f64, f64),
     /// the advance per step of features[0]'s surface and of the film's disturbances (u_e), in cells
     pub cells_per_step: (f64, f64),
+    /// [`steps_for_one_cell`]: Some when the step is coarse (a note)
+    pub steps_for_one_cell: Option<usize>,
     /// `output.frames_every` used (the case's or the memory-bounded choice) and the frames' bytes
     pub frames_every: usize,
     pub frames_bytes: f64,
@@ -163,6 +173,11 @@ pub fn check_report(case: &Case) -> CheckReport {
             cells_per_step: (
                 kin.xp_speed * kin.dt / grid.dx,
                 m.entrainment_speed * kin.dt / grid.dx,
+            ),
+            steps_for_one_cell: steps_for_one_cell(
+                !case.features.is_empty(),
+                kin.steps,
+                kin.xp_speed.abs() * kin.dt / grid.dx,
             ),
             frames_every: k,
             frames_bytes: crate::run::transient::frames_memory(case, k),
@@ -394,12 +409,11 @@ impl fmt::Display for CheckReport {
                 fixed(t.cells_per_step.1, 3),
                 "cells",
             )?;
-            if t.cells_per_step.0 > COARSE_CELLS_PER_STEP {
+            if let Some(steps) = t.steps_for_one_cell {
                 writeln!(
                     f,
-                    "  note: features[0] moves {} cells a step; a feature with steep walls (a pit) wants about one: its wall pressures depend on the step (the 1 um thesis pit's peak 1.40 GPa at 2.3 cells a step, 1.23 at 1.2, 1.17 at 0.6; docs/pits.md): motion.travel.steps = {} gives one",
+                    "  note: features[0] moves {} cells a step; a feature with steep walls (a pit) wants about one: its wall pressures depend on the step (the 1 um thesis pit's peak 1.40 GPa at 2.3 cells a step, 1.23 at 1.2, 1.17 at 0.6; docs/pits.md): motion.travel.steps = {steps} gives one",
                     fixed(t.cells_per_step.0, 1),
-                    (t.steps as f64 * t.cells_per_step.0).ceil()
                 )?;
             }
             row(

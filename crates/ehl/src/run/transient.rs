@@ -417,10 +417,11 @@ pub(super) fn solve(
         ));
     }
     let cells = kin.xp_speed.abs() * kin.dt / grid.dx;
-    if !case.features.is_empty() && cells > crate::reference::check::COARSE_CELLS_PER_STEP {
+    if let Some(steps) =
+        crate::reference::check::steps_for_one_cell(!case.features.is_empty(), kin.steps, cells)
+    {
         summary.warnings.push(format!(
-            "features[0] moved {cells:.1} cells a step: at more than about one a steep-walled feature's wall pressures depend on the step (docs/pits.md, \"Sharp edges and the time step\"); motion.travel.steps = {} gives one",
-            (kin.steps as f64 * cells).ceil()
+            "features[0] moved {cells:.1} cells a step: at more than about one a steep-walled feature's wall pressures depend on the step (docs/pits.md, \"Sharp edges and the time step\"); motion.travel.steps = {steps} gives one"
         ));
     }
     // the extremes over the travel come from the converged steps (a step that did not converge
