@@ -38,6 +38,7 @@ fn poiseuille_exact_on_quadratics() {
         h: &h,
         eps: &eps,
         active: &act,
+        couette_shift: None,
     };
     let mut r = vec![0.0; n];
     residual(&g, &f, None, None, &mut r);
@@ -79,6 +80,7 @@ fn couette_upwind_orders() {
             h: &h,
             eps: &eps,
             active: &act,
+            couette_shift: None,
         };
         let mut r = vec![0.0; n];
         residual(&g, &f, None, None, &mut r);
@@ -126,6 +128,7 @@ fn flux_form_conserves_mass() {
         h: &h,
         eps: &eps,
         active: &act,
+        couette_shift: None,
     };
     let mut r = vec![0.0; n];
     residual(&g, &f, None, None, &mut r);

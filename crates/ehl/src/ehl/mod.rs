@@ -1246,7 +1246,7 @@ fn finish(
         outflow: 0.0,
         side_leakage: 0.0,
     };
-    let m = residual::mass_flow(&sys.rg, &st.fields(&sys.active));
+    let m = residual::mass_flow(&sys.rg, &sys.fields(&st));
     // dimensionless flow (rho/rho0) H dY per unit u_e -> kg/s: rho0 u_e (b^2/R) b
     let q = lub.density * problem.entrainment_speed * hs * b;
     out.inflow = m.inflow * q;

@@ -170,6 +170,7 @@ impl State {
             h: &self.h,
             eps: &self.eps,
             active,
+            couette_shift: None,
         }
     }
 
@@ -190,6 +191,8 @@ pub(crate) struct Linear {
     dh: Vec<f64>,
     deps: Vec<f64>,
     dq: Vec<f64>,
+    /// d(rho (H + shift)) of the Couette term when the features' transport shifts it
+    dqc: Vec<f64>,
     tmp: Vec<f64>,
     zeros: Vec<f64>,
     ones: Vec<f64>,
@@ -202,6 +205,7 @@ impl Linear {
             dh: vec![0.0; n],
             deps: vec![0.0; n],
             dq: vec![0.0; n],
+            dqc: vec![0.0; n],
             tmp: vec![0.0; n],
             zeros: vec![0.0; n],
             ones: vec![1.0; n],
@@ -244,6 +248,9 @@ pub(crate) struct System {
     pub dense_builds: usize,
     /// thermal runs: the film's temperature as frozen per-cell factors (see [`ThermalFactors`])
     pub thermal: Option<ThermalFactors>,
+    /// a time step's transport of the moving features: the Couette term carries
+    /// rho (H + shift) (see [`residual::feature_transport`]); None: rho H
+    pub couette_shift: Option<Vec<f64>>,
     scratch: Vec<f64>,
 }
 
@@ -342,12 +349,26 @@ impl System {
             dense_extra: 0,
             dense_builds: 0,
             thermal: None,
+            couette_shift: None,
             scratch: vec![0.0; n],
+        }
+    }
+
+    /// The fields of `st` for the Reynolds operator, with the features' Couette shift.
+    pub fn fields<'a>(&'a self, st: &'a State) -> residual::Fields<'a> {
+        residual::Fields {
+            couette_shift: self.couette_shift.as_deref(),
+            ..st.fields(&self.active)
         }
     }
 
     pub fn n(&self) -> usize {
         self.gap.len()
+    }
+
+    /// R / b^2: metres of film to H.
+    pub fn hscale(&self) -> f64 {
+        self.hscale
     }
 
     /// c0 of the squeeze term (0 when steady).
@@ -444,13 +465,7 @@ impl System {
             c0: s.c0,
             history: &s.history,
         });
-        residual::residual(
-            &self.rg,
-            &st.fields(&self.active),
-            None,
-            tr.as_ref(),
-            &mut f,
-        );
+        residual::residual(&self.rg, &self.fields(st), None, tr.as_ref(), &mut f);
         st.f = f;
     }
 
@@ -518,15 +533,37 @@ impl System {
             h: &lin.zeros,
             eps: &lin.deps,
             active: &self.active,
+            couette_shift: None,
+        };
+        // the Couette term's d(rho (H + shift)) = dq + rho' v_P shift
+        let dqc = match &self.couette_shift {
+            Some(shift) => {
+                (
+                    lin.dqc.par_chunks_mut(chunk),
+                    lin.dq.par_chunks(chunk),
+                    lin.dp.par_chunks(chunk),
+                    st.drho.par_chunks(chunk),
+                    shift.par_chunks(chunk),
+                )
+                    .into_par_iter()
+                    .for_each(|(c, dq, dp, drho, s)| {
+                        for i in 0..c.len() {
+                            c[i] = dq[i] + drho[i] * dp[i] * s[i];
+                        }
+                    });
+                &lin.dqc
+            }
+            None => &lin.dq,
         };
         residual::residual(&self.rg, &f1, None, None, out);
         // Pois(v, eps) - Couette(dq): rho = dq, H = 1
         let f2 = Fields {
             p: &lin.dp,
-            rho: &lin.dq,
+            rho: dqc,
             h: &lin.ones,
             eps: &st.eps,
             active: &self.active,
+            couette_shift: None,
         };
         residual::residual(&self.rg, &f2, None, None, &mut lin.tmp);
         // squeeze: d(c0 rho H - history) = c0 dq
@@ -614,7 +651,7 @@ impl System {
     pub fn relative_residual(&self, st: &State, c: &[f64]) -> f64 {
         let rg = &self.rg;
         let active = &self.active[..];
-        let f = st.fields(active);
+        let f = self.fields(st);
         // row sums in parallel, added in row order (the same result on any number of threads)
         let rows: Vec<(f64, f64)> = (0..rg.ny)
             .into_par_iter()

@@ -204,6 +204,7 @@ pub(super) fn solve(
             ..EhlParams::default()
         },
         scheme: TimeScheme::Bdf2,
+        feature_transport: true,
     };
     // the step each snapshot is taken at
     let snapshot_steps: Vec<(f64, usize)> = case
