@@ -298,9 +298,15 @@ fn check_groove_run(dir: &Path, kept: &[usize]) -> Timeline {
         x_p[kh],
         "min_film_over_travel_at_xp_m",
     );
-    // a 0.25 um groove through a 1.5 um film: the pressure rises well above the steady start
-    // (measured: 1.116 against 0.994 GPa)
-    assert!(p_over > 1.05 * pmax[0], "{p_over} vs {}", pmax[0]);
+    // a 0.25 um groove through a 1.5 um film: the film carries it through the centre, so the
+    // central film ranges over more than half the groove's depth (measured: 1.460-1.675 um).
+    // (The pressure's rise is no test: near pure rolling a groove's walls raise no spike; the
+    // 1.116 against 0.994 GPa once asserted here was a discretisation artefact, docs/pits.md)
+    let (lo, hi) = hc
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
+    assert!(hi - lo > 0.5 * 0.25e-6, "central film {lo} .. {hi}");
+    assert!(p_over > pmax[0], "{p_over} vs {}", pmax[0]);
     let fr = &s["friction_coefficient_over_travel"];
     assert_same(
         fr[0].as_f64().unwrap(),
