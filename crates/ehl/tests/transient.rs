@@ -22,25 +22,10 @@ fn line(m: f64, l: f64) -> LineCase {
 }
 
 /// Runs a transient line contact on `nx` cells over [xin, xout] b with body 1's and body 2's
-/// features (`s1`, `s2`, moving at u_e (1 +- srr/2)), `steps` steps of `dt` s; every step.
+/// features (`s1`, `s2`, moving at u_e (1 +- srr/2)), `steps` steps of `dt` s; every step;
+/// `transport`: the features' own transport (else the plain upwind wedge term).
 #[allow(clippy::too_many_arguments)]
 fn run_line(
-    c: &LineCase,
-    nx: usize,
-    (xin, xout): (f64, f64),
-    srr: f64,
-    s1: &Surface,
-    s2: &Surface,
-    dt: f64,
-    steps: usize,
-    scheme: TimeScheme,
-) -> (Grid, Vec<StepResult>, TransientEnd) {
-    run_line_with(c, nx, (xin, xout), srr, s1, s2, dt, steps, scheme, true)
-}
-
-/// [`run_line`] with the features' exact transport on (`transport`) or off.
-#[allow(clippy::too_many_arguments)]
-fn run_line_with(
     c: &LineCase,
     nx: usize,
     (xin, xout): (f64, f64),
@@ -135,6 +120,7 @@ fn smooth_steady(c: &LineCase, nx: usize, x_range: (f64, f64), srr: f64) -> (Gri
         1.0,
         0,
         TimeScheme::Bdf2,
+        true,
     );
     (grid, steps.remove(0))
 }
@@ -172,6 +158,7 @@ fn smooth_transient_stays_on_the_steady_solution() {
         dt,
         10,
         TimeScheme::Bdf2,
+        true,
     );
     assert_eq!(
         end,
@@ -207,7 +194,7 @@ fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize, transport: bool) ->
     let dt = grid.dx / c.ue;
     let flush = ((-xin) * c.b / grid.dx).ceil() as usize + 20;
     let period = (lambda / grid.dx).ceil() as usize;
-    let (_, steps, end) = run_line_with(
+    let (_, steps, end) = run_line(
         &c,
         nx,
         (xin, xout),
@@ -345,6 +332,7 @@ fn cost_probe() {
             grid.dx / c.ue,
             nsteps,
             TimeScheme::Bdf2,
+            true,
         );
         let k = nsteps as f64;
         let n: usize = steps[1..].iter().map(|s| s.newton_iterations).sum();
@@ -384,6 +372,7 @@ fn zero_depth_groove_reproduces_the_smooth_solution() {
         dx / (1.25 * c.ue),
         20,
         TimeScheme::Bdf2,
+        true,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 0.5);
@@ -409,6 +398,7 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
         dx / c.ue,
         20,
         TimeScheme::Bdf2,
+        true,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let s0 = &steps[0];
@@ -438,6 +428,7 @@ fn mass_is_conserved_at_every_step_of_a_groove_passage() {
         dx / u1,
         steps_n,
         TimeScheme::Bdf2,
+        true,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     // The imbalance is the sum of the converged cell residuals over the wet cells: with the
@@ -546,6 +537,7 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
         dt,
         flush + lag,
         TimeScheme::Bdf2,
+        true,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let xs: Vec<f64> = (0..nx).map(|i| grid.x(i) / c.b).collect();
