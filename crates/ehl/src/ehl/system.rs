@@ -471,7 +471,9 @@ impl System {
 
     /// Exact directional derivative dF = (dF/dP) v_P + (dF/dH0) v_H0 at the evaluated state `st`
     /// (one operator application): the film moves by dH = v_H0 + D(v_P), eps = rho H^3/(eta lambda)
-    /// by eps (rho'/rho - (ln eta)') v_P + 3 eps dH / H, rho H by rho' H v_P + rho dH; the
+    /// by eps (rho'/rho - (ln eta)') v_P + 3 eps dH / H, rho H by rho' H v_P + rho dH (the
+    /// Couette term's rho (H + shift), with the features' shift of a time step, by
+    /// rho' (H + shift) v_P + rho dH); the
     /// Poiseuille term is bilinear in (P, eps) and the Couette term linear in rho H, so
     /// dF = -[Pois(P, d eps) + Pois(v_P, eps) - Couette(d(rho H))].
     pub fn directional(&mut self, st: &State, v: &[f64], lin: &mut Linear, out: &mut [f64]) {
@@ -1255,14 +1257,21 @@ mod tests {
     /// error is 0.16, without the film's change in eps 0.55).
     #[test]
     fn directional_derivative_matches_central_differences() {
-        check_directional(None);
+        check_directional(None, false);
     }
 
     /// The same with the BDF2 squeeze term of a time step (c0 = 3 / (2 dT), dT = 0.05): the
     /// squeeze term's c0 d(rho H) enters the product (without it the error is of order 1).
     #[test]
     fn directional_derivative_with_squeeze_matches_central_differences() {
-        check_directional(Some(30.0));
+        check_directional(Some(30.0), false);
+    }
+
+    /// The same with the features' Couette shift of a time step
+    /// ([`residual::feature_transport`]): its rho' term enters the product.
+    #[test]
+    fn directional_derivative_with_a_couette_shift_matches_central_differences() {
+        check_directional(Some(30.0), true);
     }
 
     /// Roelands + Dowson-Higginson, Newtonian, p_h 0.3 GPa: the lubricant of these tests.
@@ -1278,7 +1287,7 @@ mod tests {
         Physics::new(lubricant, 0.3e9, 2.0)
     }
 
-    fn check_directional(c0: Option<f64>) {
+    fn check_directional(c0: Option<f64>, shifted: bool) {
         let (nx, ny) = (24, 10);
         let (b, r, e) = (1e-4, 0.01, 2.2e11);
         let grid = Grid::new(nx, ny, -2.0 * b, 1.5 * b, -b, b);
@@ -1291,6 +1300,10 @@ mod tests {
             c0,
             history: (0..n).map(|k| (k % 7) as f64 * 0.3).collect(),
         });
+        if shifted {
+            // of the order of a pit's depth in H (1 um at b^2/R = 1e-6 m)
+            sys.couette_shift = Some((0..n).map(|k| ((k % 5) as f64 - 2.0) * 0.4).collect());
+        }
         let mut st = State::new(n);
         for j in 0..ny {
             for i in 0..nx {
