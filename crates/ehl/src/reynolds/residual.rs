@@ -238,7 +238,8 @@ pub fn residual(
 /// The squeeze term, the density's and the film's changes are untouched.
 ///
 /// `speed` must be well away from 0 (G = Psi / speed): the caller applies this only to bodies
-/// moving at least half as fast as u_e (a standing body's features do not move).
+/// moving at least `ehl::transient::TRANSPORT_MIN_SPEED` u_e (a standing body's features do
+/// not move).
 pub fn feature_transport(
     g: &ReynoldsGrid,
     active: &[bool],
