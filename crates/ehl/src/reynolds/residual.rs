@@ -228,9 +228,11 @@ pub fn residual(
 ///
 /// How: the features' own discrete transport flux Psi is taken from their storage rate
 /// `storage` s = c0 F^{n+1} - history (the step's BDF rule applied to the cell averages
-/// `depth` = F^{n+1}, in units of H): Psi_{i+1/2} = Psi_{i-1/2} - dX s_i, starting from
-/// u_b F at the inlet face of each run of cells with material. Its Couette counterpart at the
-/// mean speed is G = Psi / `speed` (speed = u_b / u_e), and `shift` gets F~ - F, F~ the cell
+/// `depth` = F^{n+1}, in units of H): Psi_{i+1/2} = Psi_{i-1/2} - dX s_i along each run of
+/// cells with material. Its Couette counterpart at the mean speed is G = Psi / `speed`
+/// (speed = u_b / u_e), known up to a constant, which is set by the median offset of G from
+/// the plain rule's face values of F (0 for a pit, whose G and plain values agree away from its
+/// walls; the inlet face value for a waviness). `shift` gets F~ - F, F~ the cell
 /// values whose upwind face values (the rule of [`couette_east`]) are G. The result: storage
 /// s_i against the Couette divergence -s_i / speed, i.e. the sliding source
 /// (u_e - u_b) dF/dx discretised through the storage, and exactly 0 in pure rolling (the first
