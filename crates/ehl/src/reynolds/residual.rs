@@ -76,8 +76,9 @@ pub struct Fields<'a> {
 }
 
 impl Fields<'_> {
-    /// q = rho H of the Couette term at cell `k` (with the features' transport shift).
-    #[inline]
+    /// q = rho H of the Couette term at cell `k` (with the features' transport shift). Always
+    /// inlined: as a call it took 2.9 % of the waviness line's run.
+    #[inline(always)]
     fn couette_q(&self, k: usize) -> f64 {
         match self.couette_shift {
             Some(s) => self.rho[k] * (self.h[k] + s[k]),
@@ -87,7 +88,7 @@ impl Fields<'_> {
 }
 
 /// Upwind Couette face value of rho H on the inlet (west) face of cell `(i, j)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn couette_west(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> f64 {
     let k = j * g.nx + i;
     let q = |k: usize| f.couette_q(k);
@@ -102,7 +103,7 @@ pub(crate) fn couette_west(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> 
 }
 
 /// Upwind Couette face value of rho H on the outlet (east) face of cell `(i, j)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn couette_east(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> f64 {
     let k = j * g.nx + i;
     let q = |k: usize| f.couette_q(k);
@@ -141,7 +142,7 @@ pub(crate) fn couette_stencil(g: &ReynoldsGrid, active: &[bool], i: usize, j: us
 /// Poiseuille coefficient of the face between cell `k` and its neighbour `n` (None: domain edge),
 /// divided by the squared distance to where the neighbour's pressure sits; returns
 /// `(coefficient, neighbour pressure)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn face(f: &Fields, k: usize, n: Option<usize>, d2: f64) -> (f64, f64) {
     match n {
         Some(n) if f.active[n] => (0.5 * (f.eps[k] + f.eps[n]) / d2, f.p[n]),
