@@ -240,6 +240,12 @@ pub fn residual(
 /// cell of each run keeps its storage uncompensated: its inlet face is a zero-gradient one).
 /// The squeeze term, the density's and the film's changes are untouched.
 ///
+/// Units: `depth` and `shift` in H (film over b^2/R), `storage` in H per unit of the
+/// dimensionless time T = t u_e / b, `speed` = u_b / u_e; the grid's dX in b. Source: our own
+/// construction (docs/pits.md, "Sharp edges"): the discrete counterpart of
+/// dF/dt + u_b dF/dx = 0 for a feature carried by its body, so that the wedge term's
+/// u_e dF/dx equals -(u_e / u_b) dF/dt cell by cell.
+///
 /// `speed` must be well away from 0 (G = Psi / speed): the caller applies this only to bodies
 /// moving at least `ehl::transient::TRANSPORT_MIN_SPEED` u_e (a standing body's features do
 /// not move).
