@@ -105,9 +105,9 @@ fn thermal_film(c: &mut Criterion) {
         t1: &walls,
         t2: &walls,
         t_in: t0,
-        extra_source: None,
         poiseuille_flux_x: None,
         transient: None,
+        side: None,
     };
     let opts = LineOptions::default();
     let s = solve_line(&rule, &laws, &oil, &line, None, &opts).expect("film");

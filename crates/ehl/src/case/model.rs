@@ -342,4 +342,8 @@ pub struct ThermalSpec {
     pub film_tolerance: f64,
     /// `max_iterations`: most outer (Reynolds-temperature) iterations of a steady solve
     pub max_iterations: usize,
+    /// `side_flow` (default true): the film's heat convected along y by the side flow,
+    /// v dT/dy ([`crate::thermal::ContactOptions::side_flow`]); false keeps the grid lines
+    /// independent
+    pub side_flow: bool,
 }

@@ -2083,12 +2083,14 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
     let max_iterations = s
         .count("max_iterations", "outer iterations", 1)?
         .unwrap_or(defaults.max_outer);
+    let side_flow = s.boolean("side_flow")?.unwrap_or(true);
     Ok(Some(ThermalSpec {
         lubricant: spec,
         bodies,
         tolerance_k,
         film_tolerance,
         max_iterations,
+        side_flow,
     }))
 }
 

@@ -127,6 +127,7 @@ const OTHER_KEYS: &[&str] = &[
     "thermal.tolerance",
     "thermal.film_tolerance",
     "thermal.max_iterations",
+    "thermal.side_flow",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

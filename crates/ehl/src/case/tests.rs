@@ -954,6 +954,9 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
         (th.tolerance_k, th.film_tolerance, th.max_iterations),
         (0.05, 1e-4, 80)
     );
+    assert!(th.side_flow, "the side flow is on by default");
+    let off = parse(&format!("{EHL}\n[thermal]\nside_flow = false\n"), &[]).unwrap();
+    assert!(!off.thermal.unwrap().side_flow);
     let th = parse(
         &format!(
             "{EHL}\n[thermal]\ntolerance = 0.01\nfilm_tolerance = 1e-5\nmax_iterations = 200\n"
@@ -1004,6 +1007,11 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
             "\n[thermal]\nmax_iterations = 0\n",
             "thermal.max_iterations",
             "at least 1",
+        ),
+        (
+            "\n[thermal]\nside_flow = 1\n",
+            "thermal.side_flow",
+            "true or false",
         ),
     ];
     for (extra, key, word) in cases {

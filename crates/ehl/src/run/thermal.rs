@@ -97,7 +97,9 @@ pub fn contact_for(case: &Case, grid: crate::grid::Grid) -> Result<ThermalContac
         ));
     };
     let laws = ThermalLaws::new(lub, &spec.lubricant);
-    ThermalContact::new(grid, laws, spec.bodies, m.u1(), m.u2())
+    let mut contact = ThermalContact::new(grid, laws, spec.bodies, m.u1(), m.u2())?;
+    contact.options.side_flow = spec.side_flow;
+    Ok(contact)
 }
 
 /// The thermal figures of `contact` (its last update) and its output `fields` into `summary`;

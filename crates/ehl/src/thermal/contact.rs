@@ -12,21 +12,21 @@
 //! 2. the heat flux into each body from the film (the consistent wall fluxes);
 //! 3. each surface temperature T0 + the moving-heat-source response to that flux (Jaeger),
 //!
-//! until the surface temperatures change by less than [`ContactOptions::surface_tol`]. Why it
+//! until the surface temperatures change by less than [`ContactOptions::surface_tol`]. The grid
+//! lines exchange heat through the side flow (v dT/dy, [`ContactOptions::side_flow`]): each
+//! film iteration takes its neighbours' temperatures and the y mass fluxes of the last one
+//! (`film_energy::SideFlow`). Why it
 //! converges: the film's conductance k_f / h (~1e5 W/(m^2 K) for 1 um) is well below a steel
 //! body's k sqrt(U / (kappa x)) (~1e6 at 1 m/s over 0.1 mm), so the loop gain is ~0.1.
 //!
 //! # Neglected (said in docs/thermal.md)
 //!
-//! * The side flow's convection v dT/dy: the grid lines along x are independent (the film
-//!   module's lagged `extra_source` is left at zero). On a finite roller it matters only near
-//!   the ends, where the side flow is.
 //! * In-plane conduction in the film (negligible: film Peclet ~1e3).
 //! * The cavitated zone is treated as a full film at ambient pressure.
 
 use super::collocation::Lobatto;
 use super::film::{FilmLaws, FilmProfile, OilThermal};
-use super::film_energy::{solve_lines, Line, LineOptions, LineSolution, LineTransient};
+use super::film_energy::{solve_lines, Line, LineOptions, LineSolution, LineTransient, SideFlow};
 use super::solid::{MovingHalfSpace, SolidThermal};
 use crate::grid::Grid;
 use crate::lubricant::rheology::{
@@ -113,6 +113,10 @@ pub struct ContactOptions {
     pub max_surface_iterations: usize,
     /// the film's own fixed point (laws at T) per line
     pub line: LineOptions,
+    /// convect the film's heat along y with the side flow, v dT/dy, between the grid lines
+    /// (lagged by one film-body iteration; see `film_energy::SideFlow`); false: independent
+    /// lines, as before 2026-11-26
+    pub side_flow: bool,
 }
 
 impl Default for ContactOptions {
@@ -140,6 +144,7 @@ impl Default for ContactOptions {
                 relaxation: 0.4,
                 ..LineOptions::default()
             },
+            side_flow: true,
         }
     }
 }
@@ -152,6 +157,8 @@ pub struct HeatBalance {
     /// conducted into body 1 and body 2
     pub to_body: [f64; 2],
     /// enthalpy carried out of the domain by the oil, c int rho u (T - T0) dz through the ends
+    /// of the grid lines and, with the side flow, c int rho v (T - T0) dz through the film's
+    /// edges along y
     pub convected: f64,
     /// the rate of change of the enthalpy the film holds (a time step of a transient run; 0
     /// when steady)
@@ -207,6 +214,15 @@ pub struct ThermalContact {
     /// iteration's change, where the film is at most RESIDUAL_FILM_RATIO times its row's
     /// thinnest) and the bodies' (the last surface-temperature update's change)
     residual: [f64; 2],
+}
+
+/// The side flow of one grid line (see `film_energy::SideFlow`), owned.
+#[derive(Debug, Clone)]
+struct SideArrays {
+    north: Vec<f64>,
+    south: Vec<f64>,
+    t_north: Vec<f64>,
+    t_south: Vec<f64>,
 }
 
 /// The film at the previous time level of a transient run, per grid line (nx * nz, i-major):
@@ -455,6 +471,20 @@ impl ThermalContact {
                 return Err(Error::Cancelled);
             }
             let rows: Vec<usize> = (0..ny).filter(|&j| len[j] > 0).collect();
+            // the side flow from the last iterate: this update's lines once solved, the last
+            // update's before
+            let side: Vec<Option<SideArrays>> = if opts.side_flow && ny > 1 {
+                let my = if sols.is_empty() {
+                    self.side_mass_flux(&self.lines, &self.start, &self.h)
+                } else {
+                    self.side_mass_flux(&sols, &start, &hh)
+                };
+                (0..ny)
+                    .map(|j| (len[j] > 0).then(|| self.side_arrays(j, start[j], len[j], &wet, &my)))
+                    .collect()
+            } else {
+                vec![None; ny]
+            };
             let lines: Vec<Line> = rows
                 .iter()
                 .map(|&j| {
@@ -470,7 +500,6 @@ impl ThermalContact {
                         t1: &self.surface[0][r.clone()],
                         t2: &self.surface[1][r.clone()],
                         t_in: t0,
-                        extra_source: None,
                         poiseuille_flux_x: Some(&flux[r.clone()]),
                         transient: self.step.as_ref().map(|s| {
                             let at = start[j] * nz..len[j] * nz;
@@ -479,6 +508,13 @@ impl ThermalContact {
                                 t_old: &s.t_old[j][at.clone()],
                                 rho_h_old: &s.rho_h_old[j][at],
                             }
+                        }),
+                        side: side[j].as_ref().map(|a| SideFlow {
+                            inv_dy: 1.0 / g.dy,
+                            north: &a.north,
+                            south: &a.south,
+                            t_north: &a.t_north,
+                            t_south: &a.t_south,
                         }),
                     }
                 })
@@ -604,6 +640,82 @@ impl ThermalContact {
         self.h = hh;
         self.dpdx = dpdx;
         Ok(change)
+    }
+
+    /// The y mass flux per unit zeta, h rho v (kg/(m s)), at every point (cell-major, nz per
+    /// cell) of the lines `lines` (film starting at `start[j]`, films `h` per cell); NaN where
+    /// no line was solved.
+    fn side_mass_flux(
+        &self,
+        lines: &[Option<LineSolution>],
+        start: &[usize],
+        h: &[f64],
+    ) -> Vec<f64> {
+        let (nx, nz) = (self.grid.nx, self.nz());
+        let mut my = vec![f64::NAN; self.grid.len() * nz];
+        for (j, s) in lines.iter().enumerate() {
+            let Some(s) = s else { continue };
+            for (i, pr) in s.profiles.iter().enumerate() {
+                let k = j * nx + start[j] + i;
+                for z in 0..nz {
+                    my[k * nz + z] = h[k] * s.coefficients.density[i * nz + z] * pr.v[z];
+                }
+            }
+        }
+        my
+    }
+
+    /// The side flow of row `j`'s film (cells `start..end`) from the y mass fluxes `my` (see
+    /// [`ThermalContact::side_mass_flux`]) and the film temperatures of the last iterate: face
+    /// fluxes the mean of the two cells' where both have a film (`wet`) and a flux, else the
+    /// cell's own (a flux with nothing beyond: the side leakage at a roller's end); the
+    /// temperature beyond a face the neighbour's, or the inlet's where it has no film.
+    fn side_arrays(
+        &self,
+        j: usize,
+        start: usize,
+        end: usize,
+        wet: &[bool],
+        my: &[f64],
+    ) -> SideArrays {
+        let (nx, ny, nz) = (self.grid.nx, self.grid.ny, self.nz());
+        let t0 = self.t0();
+        let m = (end - start) * nz;
+        let mut a = SideArrays {
+            north: vec![0.0; m],
+            south: vec![0.0; m],
+            t_north: vec![t0; m],
+            t_south: vec![t0; m],
+        };
+        let flux = |at: usize| if my[at].is_finite() { my[at] } else { 0.0 };
+        for i in start..end {
+            let k = j * nx + i;
+            let neighbours = [
+                (j + 1 < ny).then(|| k + nx),
+                j.checked_sub(1).map(|_| k - nx),
+            ];
+            for z in 0..nz {
+                let at = (i - start) * nz + z;
+                let own = flux(k * nz + z);
+                for (side, nb) in neighbours.iter().enumerate() {
+                    let (face, t) = match nb {
+                        Some(kn) if wet[*kn] && my[kn * nz + z].is_finite() => (
+                            0.5 * (own + my[kn * nz + z]),
+                            self.film[kn / nx][(kn % nx) * nz + z],
+                        ),
+                        _ => (own, t0),
+                    };
+                    if side == 0 {
+                        a.north[at] = face;
+                        a.t_north[at] = t;
+                    } else {
+                        a.south[at] = face;
+                        a.t_south[at] = t;
+                    }
+                }
+            }
+        }
+        a
     }
 
     /// The last solution of cell `k`'s grid line and the cell's index along it (None where
@@ -794,6 +906,9 @@ impl ThermalContact {
                 hb.to_body[0] += e.q1[i] * area;
                 hb.to_body[1] += e.q2[i] * area;
                 hb.stored += e.stored[i] * area;
+                // the side flow's exchanges cancel between lines (up to the lag of one film
+                // iteration); what is left leaves through the film's y-edges (the roller ends)
+                hb.convected += e.side_out[i] * area;
                 if self.p[k] > 0.0 {
                     let col = &s.t[i * nz..(i + 1) * nz];
                     tsum += (0..nz).map(|z| self.rule.weights[z] * col[z]).sum::<f64>();

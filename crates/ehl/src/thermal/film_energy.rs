@@ -49,8 +49,15 @@
 //!   artificial conduction is uniform across the column, so the balance still telescopes; a
 //!   first-order upwind difference across z, tried first, stabilised it as well but put the balance
 //!   of a pure-rolling line 0.6 % off.
-//! * The v dT/dy term (and the y-part of J) couples the lines: it is not modelled here; a
-//!   caller on a 2D grid can pass it, lagged, through [`Line::extra_source`].
+//! * Along y (the side flow of a finite contact, [`SideFlow`]): the same upwind difference of
+//!   the y mass flux per unit zeta m_y = h rho v between the line and its neighbours at
+//!   y -+ dy, (1/dy) [m_n^- (T_N - T) + m_s^+ (T - T_S)] (faces n = j + 1/2, s = j - 1/2), and
+//!   the y-divergence (m_n - m_s)/dy in J. It couples the lines: the caller passes the
+//!   neighbours' temperatures and the face fluxes from its last iterate (lagged), the line's
+//!   own T implicit. With J carrying the divergence, the convection is the conservative
+//!   difference of the upwinded flux minus T times continuity, as along x, and the enthalpy a
+//!   line exchanges with its neighbours, [`LineEnergy::side_out`], cancels between lines up to
+//!   the lag.
 //! * Unknowns theta = T - T_in (a line with no heating whose surfaces and inlet are at T_in
 //!   gives exactly theta = 0), ordered i-major (cell by cell, nz - 2 per cell): one banded
 //!   system with nz - 2 sub- and super-diagonals, [`crate::linalg::banded::Banded`].
@@ -104,9 +111,6 @@ pub struct Line<'a> {
     pub t2: &'a [f64],
     /// temperature of the oil flowing into the line at either end (K)
     pub t_in: f64,
-    /// an extra heat source (W/m^3) at every point (nx * nz, i-major), e.g. a lagged
-    /// -rho c v dT/dy; `None`: zero
-    pub extra_source: Option<&'a [f64]>,
     /// the pressure-flow (Poiseuille) part of the x mass flux per unit width,
     /// -(rho/eta)_e h^3/12 dp/dx (kg/(m s)), each column must carry, per cell; `None`: the
     /// columns take `dpdx` as given. With it, `dpdx` is only the start: each column's pressure
@@ -115,6 +119,47 @@ pub struct Line<'a> {
     pub poiseuille_flux_x: Option<&'a [f64]>,
     /// a time step of a transient run (`None`: steady), see [`LineTransient`]
     pub transient: Option<LineTransient<'a>>,
+    /// the side flow to and from the neighbouring lines (`None`: none, a line contact or an
+    /// independent line), see [`SideFlow`]
+    pub side: Option<SideFlow<'a>>,
+}
+
+/// The convection along y between a line and its neighbours at y + dy (north) and y - dy
+/// (south), per point (nx * nz, i-major), lagged: from the caller's last iterate (see the
+/// module docs). The surfaces do not move along y, so the fluxes at the wall points k = 0 and
+/// nz - 1 are zero.
+#[derive(Debug, Clone, Copy)]
+pub struct SideFlow<'a> {
+    /// 1 / dy (1/m)
+    pub inv_dy: f64,
+    /// the mass flux per unit zeta, h rho v (kg/(m s)), through the face towards +y
+    pub north: &'a [f64],
+    /// the same through the face towards -y (positive along +y, i.e. into the line)
+    pub south: &'a [f64],
+    /// the temperature beyond the north face (K): the neighbour's, or the inlet temperature
+    /// where the neighbour has no film
+    pub t_north: &'a [f64],
+    /// the temperature beyond the south face (K)
+    pub t_south: &'a [f64],
+}
+
+impl SideFlow<'_> {
+    /// (m_s^+ - m_n^-) / dy (kg/(m^2 s)): the coefficient of the point's own T in the upwind
+    /// difference, and the rest, (m_n^- T_N - m_s^+ T_S) / dy with temperatures taken from
+    /// `t_in` (kg K/(m^2 s)): the upwind difference is c (leave T + rest) with T - t_in.
+    fn upwind(&self, at: usize, t_in: f64) -> (f64, f64) {
+        let (n, s) = (self.north[at], self.south[at]);
+        (
+            (s.max(0.0) - n.min(0.0)) * self.inv_dy,
+            (n.min(0.0) * (self.t_north[at] - t_in) - s.max(0.0) * (self.t_south[at] - t_in))
+                * self.inv_dy,
+        )
+    }
+
+    /// (m_n - m_s) / dy (kg/(m^2 s)): the side flow's part of the film's mass balance.
+    fn divergence(&self, at: usize) -> f64 {
+        (self.north[at] - self.south[at]) * self.inv_dy
+    }
 }
 
 /// The time derivatives of a transient line, by backward Euler over one step dt:
@@ -163,10 +208,15 @@ impl Line<'_> {
                 return Err(FilmError::Input(format!("{name} must be finite, got {v}")));
             }
         }
-        if let Some(s) = self.extra_source {
-            if s.len() != nx * nz || s.iter().any(|v| !v.is_finite()) {
+        if let Some(sf) = &self.side {
+            let fields = [sf.north, sf.south, sf.t_north, sf.t_south];
+            if !(sf.inv_dy > 0.0 && sf.inv_dy.is_finite())
+                || fields
+                    .iter()
+                    .any(|f| f.len() != nx * nz || f.iter().any(|v| !v.is_finite()))
+            {
                 return Err(FilmError::Input(format!(
-                    "extra_source must hold {} finite values",
+                    "a side flow needs a finite 1/dy > 0 and {} finite fluxes and temperatures",
                     nx * nz
                 )));
             }
@@ -211,7 +261,7 @@ impl Line<'_> {
 pub struct LineCoefficients {
     /// m = h rho u (kg/(m s)): the x mass flux per unit zeta
     pub mass_flux: Vec<f64>,
-    /// the heat source S (W/m^3): shear heating plus [`Line::extra_source`]
+    /// the heat source S (W/m^3): shear heating
     pub heating: Vec<f64>,
     /// a = (1/rho)(d rho/dT)(u dp/dx + v dp/dy) (W/(m^3 K)): the compression source is -a T
     pub compression: Vec<f64>,
@@ -224,7 +274,8 @@ pub struct LineCoefficients {
 /// Energy accounting of a line for a temperature field and the coefficients it was solved
 /// with. Per unit length along y.
 ///
-/// Balance: sum_i dx (generated_i - q1_i - q2_i) = enthalpy_flux[nx] - enthalpy_flux[0].
+/// Balance: sum_i dx (generated_i - q1_i - q2_i - stored_i - side_out_i) = enthalpy_flux[nx] -
+/// enthalpy_flux[0].
 ///
 /// The wall heat fluxes `q1`, `q2` are the *consistent* fluxes (Gresho, Lee & Sani 1987, the
 /// flux recovered from the discrete balance): the gradient flux k_f dT/dz of the collocation
@@ -241,7 +292,7 @@ pub struct LineCoefficients {
 /// boundary layers at the inlet).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LineEnergy {
-    /// int_0^h (S - a T) dz per cell (W/m^2): shear heating, extra source and compression
+    /// int_0^h (S - a T) dz per cell (W/m^2): shear heating and compression
     pub generated: Vec<f64>,
     /// heat flux into body 1, +k_f dT/dz at z = 0, per cell (W/m^2), consistent (see above)
     pub q1: Vec<f64>,
@@ -257,14 +308,21 @@ pub struct LineEnergy {
     /// the rate of change of the enthalpy the film holds, per cell (W/m^2; zero when steady):
     /// sum_k w_k c [h rho (T - T_old) / dt + (T - T_in) d(h rho)/dt]
     pub stored: Vec<f64>,
+    /// the enthalpy the side flow carries out of each cell's column through its two y-faces,
+    /// c sum_k w_k (F_n - F_s) / dy with the upwinded face fluxes F = m_y^+ (T_up - T_in) +
+    /// m_y^- (T_down - T_in) (W/m^2; zero without [`Line::side`])
+    pub side_out: Vec<f64>,
 }
 
 impl LineEnergy {
-    /// (sum_i dx (generated - q1 - q2 - stored), enthalpy_flux[nx] - enthalpy_flux[0]) (W/m);
-    /// with dx = +inf, the sum of (generated - q1 - q2 - stored) (W/m^2) and 0.
+    /// (sum_i dx (generated - q1 - q2 - stored - side_out), enthalpy_flux[nx] -
+    /// enthalpy_flux[0]) (W/m); with dx = +inf, the sum of (generated - q1 - q2 - stored -
+    /// side_out) (W/m^2) and 0.
     pub fn balance(&self, dx: f64) -> (f64, f64) {
         let per: f64 = (0..self.q1.len())
-            .map(|i| self.generated[i] - self.q1[i] - self.q2[i] - self.stored[i])
+            .map(|i| {
+                self.generated[i] - self.q1[i] - self.q2[i] - self.stored[i] - self.side_out[i]
+            })
             .sum();
         if dx.is_infinite() {
             (per, 0.0)
@@ -292,7 +350,7 @@ pub struct LineOptions {
     pub anderson: usize,
     /// the shear-thinning iteration per column
     pub shear: ShearOptions,
-    /// include the shear heating (false: only compression and the extra source heat)
+    /// include the shear heating (false: only compression heats)
     pub shear_heating: bool,
 }
 
@@ -495,7 +553,7 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                 f.heating[k]
             } else {
                 0.0
-            } + line.extra_source.map_or(0.0, |s| s[at]);
+            };
             c.compression[at] = drho[k] / rho[k] * (f.u[k] * col.dpdx + f.v[k] * col.dpdy);
             c.density[at] = rho[k];
             if let Some(tr) = &line.transient {
@@ -510,8 +568,21 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
     Ok((c, profiles, unconverged))
 }
 
+/// Per point, what a column loses per unit zeta other than by the x-flow (kg/(m^2 s)): the
+/// mass storage d(h rho)/dt of a transient line and the side flow's divergence dm_y/dy. J takes
+/// its cumulative integral across the film ([`face_fluxes`]).
+fn sinks(line: &Line, coef: &LineCoefficients) -> Vec<f64> {
+    let mut s = coef.mass_storage.clone();
+    if let Some(sf) = &line.side {
+        for (at, v) in s.iter_mut().enumerate() {
+            *v += sf.divergence(at);
+        }
+    }
+    s
+}
+
 /// Face mass fluxes m_{f} (f = 0..=nx, nz values each, f * nz + k) and the cross-film flux
-/// J (nx * nz) of the module documentation.
+/// J (nx * nz) of the module documentation; `storage` per point from [`sinks`].
 fn face_fluxes(
     rule: &Lobatto,
     nx: usize,
@@ -548,7 +619,8 @@ fn face_fluxes(
             }
         }
     }
-    // a transient film's mass storage: J -= int_0^zeta d(h rho)/dt
+    // a transient film's mass storage and the side flow's divergence:
+    // J -= int_0^zeta (d(h rho)/dt + dm_y/dy)
     if storage.iter().any(|&v| v != 0.0) {
         let mut c = vec![0.0; nz];
         for i in 0..nx {
@@ -620,7 +692,7 @@ pub fn solve_line_linear(
     let cp = oil.heat_capacity;
     let kf = oil.conductivity;
     let t_in = line.t_in;
-    let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &coef.mass_storage);
+    let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &sinks(line, coef));
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     let mut a = Banded::new(nx * ni, ni, ni);
     let mut b = vec![0.0; nx * ni];
@@ -655,6 +727,12 @@ pub fn solve_line_linear(
             let comp = h * coef.compression[at];
             a.add(r, r, comp);
             b[r] += h * coef.heating[at] - comp * t_in;
+            if let Some(sf) = &line.side {
+                // c [m_n^- (T_N - T) + m_s^+ (T - T_S)] / dy, the neighbours lagged
+                let (leave, rest) = sf.upwind(at, t_in);
+                a.add(r, r, cp * leave);
+                b[r] -= cp * rest;
+            }
             if let Some(tr) = line
                 .transient
                 .as_ref()
@@ -696,11 +774,12 @@ pub fn line_energy(
 ) -> LineEnergy {
     let nz = rule.len();
     let nx = line.nx();
-    let (mf, _) = face_fluxes(rule, nx, 0.0, &coef.mass_flux, &coef.mass_storage);
+    let sink = sinks(line, coef);
+    let (mf, _) = face_fluxes(rule, nx, 0.0, &coef.mass_flux, &sink);
     let w = &rule.weights;
     let kf = oil.conductivity;
     // the conductivity of each cell, as the linear solve used it (see `cell_conductivity`)
-    let (_, jflux) = face_fluxes(rule, nx, 1.0 / line.dx, &coef.mass_flux, &coef.mass_storage);
+    let (_, jflux) = face_fluxes(rule, nx, 1.0 / line.dx, &coef.mass_flux, &sink);
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     let kcell: Vec<f64> = (0..nx)
         .map(|i| {
@@ -716,6 +795,7 @@ pub fn line_energy(
         q2_gradient: vec![0.0; nx],
         enthalpy_flux: vec![0.0; nx + 1],
         stored: vec![0.0; nx],
+        side_out: vec![0.0; nx],
     };
     for i in 0..nx {
         let h = line.h[i];
@@ -732,6 +812,20 @@ pub fn line_energy(
                     w[k] * oil.heat_capacity * (heat + (col[k] - line.t_in) * coef.mass_storage[at])
                 })
                 .sum();
+        }
+        if let Some(sf) = &line.side {
+            let th = |v: f64| v - line.t_in;
+            e.side_out[i] = oil.heat_capacity
+                * sf.inv_dy
+                * (0..nz)
+                    .map(|k| {
+                        let at = i * nz + k;
+                        let (n, s) = (sf.north[at], sf.south[at]);
+                        let f_n = n.max(0.0) * th(col[k]) + n.min(0.0) * th(sf.t_north[at]);
+                        let f_s = s.max(0.0) * th(sf.t_south[at]) + s.min(0.0) * th(col[k]);
+                        w[k] * (f_n - f_s)
+                    })
+                    .sum::<f64>();
         }
         e.generated[i] = h
             * (0..nz)
@@ -793,6 +887,10 @@ pub fn line_energy(
             }
             r += cp * jflux[at] * d1t - kcell[i] / h * d2t + h * coef.compression[at] * t[at]
                 - h * coef.heating[at];
+            if let Some(sf) = &line.side {
+                let (leave, rest) = sf.upwind(at, line.t_in);
+                r += cp * (leave * (t[at] - line.t_in) + rest);
+            }
             if let Some(tr) = line
                 .transient
                 .as_ref()
@@ -1056,9 +1154,9 @@ mod tests {
                 t1: t,
                 t2: t,
                 t_in: T0,
-                extra_source: None,
                 poiseuille_flux_x: None,
                 transient: None,
+                side: None,
             }
         }
         let warm: &[f64] = &[T0, 320.0];
@@ -1110,9 +1208,9 @@ mod tests {
             t1: &[T0],
             t2: &[T0],
             t_in: T0,
-            extra_source: None,
             poiseuille_flux_x: None,
             transient: None,
+            side: None,
         };
         let opts = LineOptions {
             tol: 1e-11,
@@ -1233,9 +1331,9 @@ mod tests {
                 t1: &walls,
                 t2: &walls,
                 t_in: T0,
-                extra_source: None,
                 poiseuille_flux_x: None,
                 transient: None,
+                side: None,
             };
             let s = solve_line(&rule, &laws, &OIL, &line, t_start.as_deref(), &opts).unwrap();
             assert!(
@@ -1305,13 +1403,13 @@ mod tests {
                 t1: &walls,
                 t2: &walls,
                 t_in: T0,
-                extra_source: None,
                 poiseuille_flux_x: None,
                 transient: Some(LineTransient {
                     inv_dt,
                     t_old,
                     rho_h_old,
                 }),
+                side: None,
             };
             solve_line(&rule, &laws, &OIL, &line, Some(&steady.t), &opts).unwrap()
         };
@@ -1388,6 +1486,167 @@ mod tests {
         }
     }
 
+    /// One column (no x-flow, no heating, walls at T0) crossed by a side flow of uniform
+    /// m = h rho v per unit zeta that enters from the south at T_S = T0 + 10 K and leaves
+    /// through the north face (and the mirror: from the north, m < 0). The lagged neighbour
+    /// is given, so the column solves c (m/dy) (T - T_S) = (k/h) d2T/dzeta2 with T = T0 at the
+    /// walls: theta = theta_S [1 - cosh(lambda (zeta - 1/2)) / cosh(lambda / 2)],
+    /// lambda^2 = c m h / (k dy). The solution is analytic, so the collocation error must fall
+    /// spectrally (below 1e-3, 1e-6 and 1e-9 of theta_S at nz = 7, 11 and 17; lambda = 6, a
+    /// boundary layer of a sixth of the film). With the consistent wall fluxes the column's
+    /// balance closes to rounding: the walls take what the side flow brings in,
+    /// q1 + q2 = -side_out (1e-10 relative).
+    #[test]
+    fn side_flow_through_a_column_is_exact() {
+        let laws = ExpLaw {
+            eta0: 0.01,
+            beta: 0.0,
+            t0: T0,
+            rho0: 870.0,
+            d: 0.0,
+        };
+        let (h, dy, lambda, rise) = (1e-6, 1e-4, 6.0f64, 10.0);
+        let m = lambda * lambda * OIL.conductivity * dy / (OIL.heat_capacity * h);
+        for (nz, bound) in [(7usize, 1e-3), (11, 1e-6), (17, 1e-9)] {
+            let rule = Lobatto::new(nz);
+            for from_south in [true, false] {
+                let flux = if from_south { m } else { -m };
+                let mut f = vec![flux; nz];
+                f[0] = 0.0;
+                f[nz - 1] = 0.0;
+                let hot = vec![T0 + rise; nz];
+                let cold = vec![T0 - 50.0; nz];
+                let (t_north, t_south) = if from_south {
+                    (&cold, &hot)
+                } else {
+                    (&hot, &cold)
+                };
+                let line = Line {
+                    dx: f64::INFINITY,
+                    h: &[h],
+                    p: &[0.0],
+                    dpdx: &[0.0],
+                    dpdy: &[0.0],
+                    u1: 0.0,
+                    u2: 0.0,
+                    t1: &[T0],
+                    t2: &[T0],
+                    t_in: T0,
+                    poiseuille_flux_x: None,
+                    transient: None,
+                    side: Some(SideFlow {
+                        inv_dy: 1.0 / dy,
+                        north: &f,
+                        south: &f,
+                        t_north,
+                        t_south,
+                    }),
+                };
+                let opts = LineOptions {
+                    tol: 1e-12,
+                    shear_heating: false,
+                    ..Default::default()
+                };
+                let s = solve_line(&rule, &laws, &OIL, &line, None, &opts).unwrap();
+                let err = (0..nz).fold(0.0f64, |e, k| {
+                    let z = rule.points[k];
+                    let exact = rise * (1.0 - (lambda * (z - 0.5)).cosh() / (0.5 * lambda).cosh());
+                    e.max((s.t[k] - T0 - exact).abs() / rise)
+                });
+                let e = &s.energy;
+                let (net, _) = e.balance(line.dx);
+                eprintln!(
+                    "side flow nz {nz} from south {from_south}: error {err:.2e}, walls {:.6e} \
+                     W/m^2, side_out {:.6e}, net {net:.2e}",
+                    e.q1[0] + e.q2[0],
+                    e.side_out[0]
+                );
+                assert!(err < bound, "nz {nz}: {err}");
+                assert!(e.side_out[0] < 0.0, "the side flow brings heat in");
+                assert!(net.abs() < 1e-10 * e.side_out[0].abs(), "{net}");
+            }
+        }
+    }
+
+    /// A side flow that diverges across the film but conserves mass over the column (the
+    /// north face carries m0 6 zeta (1 - zeta), the south face that plus an odd part that
+    /// integrates to zero): J takes the divergence, J(1) = 0 to the rule's accuracy, and on a
+    /// heated line with x-flow the line's energy balance, side flow included, closes as well
+    /// as without it (1e-3 of the heat generated, the tolerance of
+    /// `energy_balance_with_convection`; measured 3e-5).
+    #[test]
+    fn a_diverging_side_flow_keeps_the_balance() {
+        let nz = 9;
+        let (s0, h, dx, rule, dpdx) = converging_diverging_dpdx(15.0, 5.0, 0.0, nz, 100);
+        let nx = h.len();
+        let m0 = 0.2
+            * s0.coefficients
+                .mass_flux
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()));
+        let mut north = vec![0.0; nx * nz];
+        let mut south = vec![0.0; nx * nz];
+        for i in 0..nx {
+            for k in 0..nz {
+                let z = rule.points[k];
+                north[i * nz + k] = m0 * 6.0 * z * (1.0 - z);
+                south[i * nz + k] = north[i * nz + k] + 20.0 * m0 * (z - 0.5) * z * (1.0 - z);
+            }
+        }
+        let t_north: Vec<f64> = s0.t.iter().map(|t| t + 3.0).collect();
+        let t_south: Vec<f64> = s0.t.iter().map(|t| t - 2.0).collect();
+        let zeros = vec![0.0; nx];
+        let walls = vec![T0; nx];
+        let line = Line {
+            dx,
+            h: &h,
+            p: &zeros,
+            dpdx: &dpdx,
+            dpdy: &zeros,
+            u1: 15.0,
+            u2: 5.0,
+            t1: &walls,
+            t2: &walls,
+            t_in: T0,
+            poiseuille_flux_x: None,
+            transient: None,
+            side: Some(SideFlow {
+                inv_dy: 1.0 / 2e-5,
+                north: &north,
+                south: &south,
+                t_north: &t_north,
+                t_south: &t_south,
+            }),
+        };
+        let laws = ExpLaw {
+            eta0: 0.05,
+            beta: 0.03,
+            t0: T0,
+            rho0: 870.0,
+            d: 0.0,
+        };
+        let opts = LineOptions {
+            tol: 1e-9,
+            ..Default::default()
+        };
+        let s = solve_line(&rule, &laws, &OIL, &line, Some(&s0.t), &opts).unwrap();
+        assert!(s.converged, "{}", s.change);
+        let e = &s.energy;
+        let (net, convected) = e.balance(dx);
+        let generated: f64 = e.generated.iter().sum::<f64>() * dx;
+        let side_in: f64 = -e.side_out.iter().sum::<f64>() * dx;
+        let err = (net - convected).abs() / generated;
+        eprintln!(
+            "diverging side flow: generated {generated:.6e} W/m, side flow in {side_in:.6e}, \
+             error {err:.2e}"
+        );
+        assert!(
+            side_in.abs() > 0.05 * generated,
+            "the side flow must matter"
+        );
+        assert!(err < 1e-3, "{err}");
+    }
+
     /// Reverse flow: the prescribed film of the balance test has u < 0 mid-film in the first
     /// cell (checked) in pure rolling; the solve converges, stays finite, and the temperature
     /// keeps above the walls' T0 up to the collocation's small undershoot (the heating is
@@ -1436,9 +1695,9 @@ mod tests {
                 t1: &walls,
                 t2: &walls,
                 t_in: T0,
-                extra_source: None,
                 poiseuille_flux_x: None,
                 transient: None,
+                side: None,
             };
             let opts = LineOptions {
                 shear_heating: heating,
