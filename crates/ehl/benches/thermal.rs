@@ -80,10 +80,7 @@ fn thermal_film(c: &mut Criterion) {
         &case.thermal.as_ref().unwrap().lubricant,
     );
     let th = &laws.thermal;
-    let oil = OilThermal {
-        conductivity: th.conductivity,
-        heat_capacity: th.heat_capacity,
-    };
+    let oil = OilThermal::constant(th.conductivity, th.heat_capacity);
     let t0 = th.inlet_temperature;
     let rule = Lobatto::new(7);
     let nx = 256;

@@ -836,6 +836,37 @@ fn rheology(s: &Sec) -> R<(Rheology, RheologyTables)> {
     Ok((rheology, tables))
 }
 
+/// `thermal.conductivity_pressure = [a, b]` (1/Pa, each >= 0 and finite): the oil's
+/// conductivity k0 (1 + a p / (1 + b p)); [0, 0] when absent.
+fn conductivity_pressure(s: &Sec) -> R<[f64; 2]> {
+    let k = "conductivity_pressure";
+    let Some(v) = s.get(k) else {
+        return Ok([0.0; 2]);
+    };
+    let hint = "give [a, b] in 1/Pa, the conductivity being conductivity * (1 + a p / (1 + b p)), e.g. [1.7e-9, 0.5e-9] for a conductivity that doubles by about 1 GPa";
+    let num = |v: &Value| match v {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    };
+    let pair = match v {
+        Value::Array(a) if a.len() == 2 => (num(&a[0]), num(&a[1])),
+        other => return Err(s.err(k, format!("found {}; {hint}", describe(other)))),
+    };
+    match pair {
+        (Some(a), Some(b)) if a >= 0.0 && b >= 0.0 && a.is_finite() && b.is_finite() => Ok([a, b]),
+        (Some(a), Some(b)) => Err(s.err(
+            k,
+            format!(
+                "a and b must be finite and not negative (a conductivity that stays positive and grows with pressure), found [{}, {}]; {hint}",
+                fmt_num(a),
+                fmt_num(b)
+            ),
+        )),
+        _ => Err(s.err(k, format!("a and b must be numbers; {hint}"))),
+    }
+}
+
 /// A rheology parameter given at several temperatures, `k = [[T (K), value], ...]`: None when
 /// the value is not an array. Temperatures positive and increasing, values positive.
 fn temperature_pairs(s: &Sec, k: &str, unit: &str) -> R<Option<TemperatureTable>> {
@@ -2019,6 +2050,7 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
         ));
     }
     let conductivity = s.positive("conductivity", "W/(m K)")?.unwrap_or(0.14);
+    let conductivity_pressure = conductivity_pressure(&s)?;
     let heat_capacity = s.positive("heat_capacity", "J/(kg K)")?.unwrap_or(2000.0);
     let points = s
         .count(
@@ -2059,6 +2091,7 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
         viscosity_temperature: vt,
         thermal_expansion,
         conductivity,
+        conductivity_pressure,
         heat_capacity,
         points_across_film: points,
         rheology: tables,

@@ -122,6 +122,7 @@ const OTHER_KEYS: &[&str] = &[
     "thermal.viscosity_beta",
     "thermal.thermal_expansion",
     "thermal.conductivity",
+    "thermal.conductivity_pressure",
     "thermal.heat_capacity",
     "thermal.points_across_film",
     "thermal.tolerance",

@@ -955,6 +955,16 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
         (0.05, 1e-4, 80)
     );
     assert!(th.side_flow, "the side flow is on by default");
+    assert_eq!(th.lubricant.conductivity_pressure, [0.0; 2]);
+    let kp = parse(
+        &format!("{EHL}\n[thermal]\nconductivity_pressure = [1.7e-9, 5e-10]\n"),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(
+        kp.thermal.unwrap().lubricant.conductivity_pressure,
+        [1.7e-9, 5e-10]
+    );
     let off = parse(&format!("{EHL}\n[thermal]\nside_flow = false\n"), &[]).unwrap();
     assert!(!off.thermal.unwrap().side_flow);
     let th = parse(
@@ -1012,6 +1022,16 @@ power_law_index = [[313.0, 0.57], [373.0, 0.993]]
             "\n[thermal]\nside_flow = 1\n",
             "thermal.side_flow",
             "true or false",
+        ),
+        (
+            "\n[thermal]\nconductivity_pressure = [1e-9]\n",
+            "thermal.conductivity_pressure",
+            "[a, b] in 1/Pa",
+        ),
+        (
+            "\n[thermal]\nconductivity_pressure = [-1e-9, 0.0]\n",
+            "thermal.conductivity_pressure",
+            "not negative",
         ),
     ];
     for (extra, key, word) in cases {

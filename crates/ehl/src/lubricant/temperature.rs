@@ -138,8 +138,11 @@ pub struct ThermalLubricant {
     pub viscosity_temperature: ViscosityTemperature,
     /// D (1/K) of thesis eq. 2.9
     pub thermal_expansion: f64,
-    /// k_f (W/(m K))
+    /// k_f (W/(m K)) at ambient pressure
     pub conductivity: f64,
+    /// its pressure dependence [a, b] (1/Pa): k_f (1 + a p / (1 + b p))
+    /// ([`crate::thermal::film::OilThermal::conductivity_at`]); [0, 0]: constant
+    pub conductivity_pressure: [f64; 2],
     /// c_f (J/(kg K))
     pub heat_capacity: f64,
     /// collocation points across the film (ends included)
@@ -258,6 +261,7 @@ mod tests {
             viscosity_temperature: ViscosityTemperature::from_s0(s0, 0.04, 313.0),
             thermal_expansion: 6.5e-4,
             conductivity: 0.14,
+            conductivity_pressure: [0.0; 2],
             heat_capacity: 2000.0,
             points_across_film: 7,
             rheology: RheologyTables {

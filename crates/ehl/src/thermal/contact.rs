@@ -263,6 +263,7 @@ impl ThermalContact {
         let oil = OilThermal {
             conductivity: laws.thermal.conductivity,
             heat_capacity: laws.thermal.heat_capacity,
+            conductivity_pressure: laws.thermal.conductivity_pressure,
         };
         let t0 = laws.thermal.inlet_temperature;
         let n = grid.len();
@@ -567,7 +568,7 @@ impl ThermalContact {
             let conductance: Vec<f64> = (0..n)
                 .map(|k| {
                     if wet[k] {
-                        self.oil.conductivity / hh[k]
+                        self.oil.conductivity_at(pp[k]) / hh[k]
                     } else {
                         0.0
                     }

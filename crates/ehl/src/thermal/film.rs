@@ -120,13 +120,38 @@ pub trait FilmLaws: Sync {
     }
 }
 
-/// Thermal properties of the oil (taken constant).
+/// Thermal properties of the oil.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OilThermal {
-    /// conductivity k_f (W/(m K))
+    /// conductivity k_f (W/(m K)) at ambient pressure, k0
     pub conductivity: f64,
-    /// specific heat capacity c (J/(kg K))
+    /// specific heat capacity c (J/(kg K)), constant: the volumetric rho c grows with
+    /// pressure through the density law (Dowson-Higginson: +22 % at 1 GPa)
     pub heat_capacity: f64,
+    /// the conductivity's pressure dependence [a, b] (1/Pa, each >= 0; [0, 0]: constant),
+    /// see [`OilThermal::conductivity_at`]
+    pub conductivity_pressure: [f64; 2],
+}
+
+impl OilThermal {
+    /// An oil of constant conductivity `k` (W/(m K)) and heat capacity `c` (J/(kg K)).
+    pub fn constant(k: f64, c: f64) -> Self {
+        OilThermal {
+            conductivity: k,
+            heat_capacity: c,
+            conductivity_pressure: [0.0; 2],
+        }
+    }
+
+    /// k_f(p) = k0 (1 + a p / (1 + b p)) (W/(m K)), p in Pa (negative p taken as 0): a
+    /// conductivity that grows with pressure and levels off, the behaviour Larsson & Andersson
+    /// (2000, Proc. IMechE J 214, 337-342) measured on lubricants to ~1 GPa. a and b are the
+    /// oil's own, fitted to its data; with b = 0 the growth is linear.
+    pub fn conductivity_at(&self, p: f64) -> f64 {
+        let [a, b] = self.conductivity_pressure;
+        let p = p.max(0.0);
+        self.conductivity * (1.0 + a * p / (1.0 + b * p))
+    }
 }
 
 /// The velocity and stress profile of one film column and its generalized Reynolds

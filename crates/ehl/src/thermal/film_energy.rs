@@ -690,7 +690,6 @@ pub fn solve_line_linear(
     let ni = nz - 2;
     let inv_dx = 1.0 / line.dx;
     let cp = oil.heat_capacity;
-    let kf = oil.conductivity;
     let t_in = line.t_in;
     let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &sinks(line, coef));
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
@@ -698,6 +697,7 @@ pub fn solve_line_linear(
     let mut b = vec![0.0; nx * ni];
     for i in 0..nx {
         let h = line.h[i];
+        let kf = oil.conductivity_at(line.p[i]);
         let kc = cell_conductivity(rule, kf, cp, h, h_min, &jflux[i * nz..(i + 1) * nz]);
         let th1 = line.t1[i] - t_in;
         let th2 = line.t2[i] - t_in;
@@ -777,13 +777,13 @@ pub fn line_energy(
     let sink = sinks(line, coef);
     let (mf, _) = face_fluxes(rule, nx, 0.0, &coef.mass_flux, &sink);
     let w = &rule.weights;
-    let kf = oil.conductivity;
     // the conductivity of each cell, as the linear solve used it (see `cell_conductivity`)
     let (_, jflux) = face_fluxes(rule, nx, 1.0 / line.dx, &coef.mass_flux, &sink);
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     let kcell: Vec<f64> = (0..nx)
         .map(|i| {
             let j = &jflux[i * nz..(i + 1) * nz];
+            let kf = oil.conductivity_at(line.p[i]);
             cell_conductivity(rule, kf, oil.heat_capacity, line.h[i], h_min, j)
         })
         .collect();
@@ -1126,6 +1126,7 @@ mod tests {
     const OIL: OilThermal = OilThermal {
         conductivity: 0.13,
         heat_capacity: 2000.0,
+        conductivity_pressure: [0.0; 2],
     };
     const T0: f64 = 313.0;
 
@@ -1229,6 +1230,77 @@ mod tests {
         let (net, _) = s.energy.balance(line.dx);
         assert!(net.abs() < 1e-9 * s.energy.generated[0], "{net}");
         (ratio, mid)
+    }
+
+    /// A conductivity that grows with pressure (`OilThermal::conductivity_at`) enters wherever
+    /// the conductivity does: a sheared column at 1 GPa with k0 (1 + a p / (1 + b p)) gives the
+    /// temperatures, traction and wall fluxes of the same column with the constant k(1 GPa), to
+    /// rounding (1e-12 relative); and that differs from k0's by far more (k doubles here).
+    #[test]
+    fn a_pressure_dependent_conductivity_acts_as_its_local_value() {
+        let rule = Lobatto::new(9);
+        let laws = ExpLaw {
+            eta0: 0.01,
+            beta: 0.03,
+            t0: T0,
+            rho0: 870.0,
+            d: 0.0,
+        };
+        let p = 1e9;
+        let growing = OilThermal {
+            conductivity_pressure: [1.7e-9, 0.5e-9],
+            ..OIL
+        };
+        let k = growing.conductivity_at(p);
+        assert!((k / OIL.conductivity - (1.0 + 1.7 / 1.5)).abs() < 1e-12);
+        let fixed = OilThermal {
+            conductivity: k,
+            ..OIL
+        };
+        let solve = |oil: &OilThermal| {
+            let line = Line {
+                dx: f64::INFINITY,
+                h: &[1e-6],
+                p: &[p],
+                dpdx: &[0.0],
+                dpdy: &[0.0],
+                u1: 0.0,
+                u2: 20.0,
+                t1: &[T0],
+                t2: &[T0 + 5.0],
+                t_in: T0,
+                poiseuille_flux_x: None,
+                transient: None,
+                side: None,
+            };
+            let opts = LineOptions {
+                tol: 1e-12,
+                max_iter: 2000,
+                relaxation: 0.5,
+                ..Default::default()
+            };
+            solve_line(&rule, &laws, oil, &line, None, &opts).unwrap()
+        };
+        let (a, b, c) = (solve(&growing), solve(&fixed), solve(&OIL));
+        let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(1e-300);
+        for (x, y) in a.t.iter().zip(&b.t) {
+            assert!(
+                rel(x - T0, y - T0) < 1e-12 || (x - y).abs() < 1e-12,
+                "{x} {y}"
+            );
+        }
+        let (ta, tb) = (a.profiles[0].traction2[0], b.profiles[0].traction2[0]);
+        assert!(rel(ta, tb) < 1e-12, "traction {ta} against {tb}");
+        assert!(rel(a.energy.q1[0], b.energy.q1[0]) < 1e-12);
+        assert!(rel(a.energy.q2[0], b.energy.q2[0]) < 1e-12);
+        // the mid-film rise above the walls' mean, T0 + 2.5 K: the shear heating's
+        let mid = |s: &LineSolution| rule.interpolate(&s.t, 0.5) - T0 - 2.5;
+        assert!(
+            mid(&c) > 1.5 * mid(&a),
+            "k0: {} K, k(p): {} K",
+            mid(&c),
+            mid(&a)
+        );
     }
 
     /// The exact plane Couette solution of thermal.md: tau/tau_iso = 2 s / sinh(2 s), mid-film
