@@ -71,7 +71,7 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
     let l = crate::reference::check::case_thermal_loading(case)?;
     (!converged && termination != "cancelled" && l > CONVERGED_THERMAL_LOADING).then(|| {
         format!(
-            "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, below which the thermal solver converged in every case measured (above it runs with sliding, and the finite roller at 256 x 256, did not settle: docs/thermal.md, \"Left open\")"
+            "; the thermal loading L = eta0 beta u_e^2/k_f is {l:.2}, above {CONVERGED_THERMAL_LOADING}, below which the thermal solver converged in every case measured (above it some runs with sliding did not settle: docs/thermal.md, \"Left open\")"
         )
     })
 }
