@@ -219,7 +219,7 @@ pub struct StressFigures {
 
 /// The passage figures of one body (`summary.json`: `passage`): maxima over its material
 /// points of the max-over-passage maps, positions [x_body, y, z] (m) in the body's material frame
-/// (x_body = x - u_body t; features[0]'s centre at x_body = x_p(0) when on this body).
+/// (x_body = x - u_body t; `features[0]`'s centre at x_body = x_p(0) when on this body).
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct PassageFigures {
     pub body: u8,
@@ -290,7 +290,7 @@ pub struct StepRecord {
     /// 0 is the steady start
     pub step: usize,
     pub time_s: f64,
-    /// centre of features[0] along x (m); NaN-free: the body's travel when there is no feature
+    /// centre of `features[0]` along x (m); NaN-free: the body's travel when there is no feature
     pub x_p_m: f64,
     pub max_pressure_pa: f64,
     pub min_film_m: f64,

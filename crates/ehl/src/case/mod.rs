@@ -45,11 +45,11 @@
 //! * `{ from, to, steps }`: the path of x_p, the centre of `features[0]` (m), in `steps` equal
 //!   steps of its body's surface speed u (u1 = u_e (1 + SRR/2) on body 1, u2 = u_e (1 - SRR/2)
 //!   on body 2): dt = (to - from) / steps / u. At t = 0 every body's surface is shifted so that
-//!   features[0]'s centre sits at `from` (the features keep their relative positions). Needs a
+//!   `features[0]`'s centre sits at `from` (the features keep their relative positions). Needs a
 //!   feature, on a body with u > 0, and `to > from` (both surfaces move in +x since |SRR| <= 2).
 //! * `{ duration, steps }`: `duration` s (> 0) in `steps` equal steps, dt = duration / steps;
-//!   the features start where the case puts them, x_p = features[0].x + u t. The form for
-//!   smooth surfaces and for features[0] on a body standing still.
+//!   the features start where the case puts them, x_p = `features[0].x` + u t. The form for
+//!   smooth surfaces and for `features[0]` on a body standing still.
 //!
 //! `steps` is a whole number from 1 to [`MAX_TRAVEL_STEPS`] (100 000). With a travel,
 //! features may lie on a moving body and outside the grid along x (they travel through it);

@@ -103,7 +103,7 @@ pub struct Motion {
 pub enum Travel {
     /// The centre of `features[0]` (x_p, m) moves from `from` to `to` with its body's surface
     /// speed: time step = (to - from) / steps / u_body. Every body's surface is placed at t = 0
-    /// so that features[0]'s centre sits at `from` (all features keep their relative positions).
+    /// so that `features[0]`'s centre sits at `from` (all features keep their relative positions).
     Path { from: f64, to: f64, steps: usize },
     /// `duration` seconds in `steps` equal steps; features start where the case puts them.
     Duration { duration: f64, steps: usize },
@@ -264,7 +264,7 @@ pub enum DepthSpacing {
 /// `[stress]`: the stress below the surface of each chosen body.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StressSpec {
-    /// the bodies whose stress is computed: [1], [2] or [1, 2]
+    /// the bodies whose stress is computed: `[1]`, `[2]` or `[1, 2]`
     pub bodies: Vec<u8>,
     /// deepest layer (m)
     pub depth_m: f64,

@@ -1011,8 +1011,8 @@ fn motion(top: &Sec, e_red: f64, r: f64, eta0: f64) -> R<Motion> {
 /// frames.npz), so time and memory grow with the count; checked before anything is allocated.
 pub const MAX_TRAVEL_STEPS: usize = 100_000;
 
-/// `motion.travel`: `{ from, to, steps }` (the path of features[0]'s centre x_p, m) or
-/// `{ duration, steps }` (s). What needs the features (the path form needs features[0] on a
+/// `motion.travel`: `{ from, to, steps }` (the path of `features[0]`'s centre x_p, m) or
+/// `{ duration, steps }` (s). What needs the features (the path form needs `features[0]` on a
 /// moving body) is checked by [`check_travel`] once they are read.
 fn travel(s: &Sec, tt: &Table) -> R<Travel> {
     let key = s.key("travel");
@@ -1103,7 +1103,7 @@ fn travel(s: &Sec, tt: &Table) -> R<Travel> {
     })
 }
 
-/// The x_p range of a travel: features[0]'s centre goes from `start` to `end`; a snapshot may lie
+/// The x_p range of a travel: `features[0]`'s centre goes from `start` to `end`; a snapshot may lie
 /// half a step beyond; `source` says where the range comes from, for messages.
 struct Span {
     start: f64,
@@ -1122,8 +1122,8 @@ fn body_speed(m: &Motion, body: u8) -> (f64, &'static str) {
 }
 
 /// The checks of `motion.travel` that need the features: the path form moves the centre of
-/// features[0], which must exist and ride on a moving body; the time step must be positive and
-/// finite. Returns the x_p range of the travel when it is known (features[0] exists).
+/// `features[0]`, which must exist and ride on a moving body; the time step must be positive and
+/// finite. Returns the x_p range of the travel when it is known (`features[0]` exists).
 fn check_travel(file: &str, m: &Motion, t: Travel, features: &[FeatureSpec]) -> R<Option<Span>> {
     match t {
         Travel::Path { from, to, steps } => {

@@ -8,7 +8,7 @@
 //!    temperatures (Jaeger's moving heat source on each body), iterated between film and bodies;
 //! 2. from the temperature across the film it forms the generalized Reynolds coefficients
 //!    (Yang & Wen 1990) as per-cell factors on the isothermal ones
-//!    ([`super::system::ThermalFactors`]); the first iteration takes them whole, the later ones
+//!    (`super::system::ThermalFactors`); the first iteration takes them whole, the later ones
 //!    Anderson-mix them with the last iterates ([`ThermalParams::anderson`]);
 //! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
 //!    from the last solution, the factors frozen. Where it fails, shorter plain steps of the

@@ -26,7 +26,7 @@
 //! Time discretisation: BDF2 with a constant step (second order, A-stable), backward Euler
 //! (BDF1) for the first step from the steady start (whose history is not known). Each step is
 //! a steady-like Newton-Krylov solve of the same system with the squeeze term's c0 on its
-//! diagonal ([`super::system::Squeeze`]); the load balance holds at every step (constant load,
+//! diagonal (`super::system::Squeeze`); the load balance holds at every step (constant load,
 //! H0 varies).
 //!
 //! Cost of a step (a waviness passing an infinite line, 1 cell per step, tolerance 1e-8):

@@ -5,7 +5,7 @@
 //!
 //! Right-looking blocked LU, the scheme of LAPACK `dgetrf` (Golub & Van Loan, *Matrix
 //! Computations*, 4th ed., alg. 3.4.2 with the block update of sec. 3.2.9): for each panel of
-//! [`BLOCK`] columns, an unblocked factorisation of the panel with partial pivoting (whole rows
+//! `BLOCK` columns, an unblocked factorisation of the panel with partial pivoting (whole rows
 //! interchanged), the triangular solve for the block row of U, and the trailing update
 //! A22 -= L21 U12 as a matrix product (`matrixmultiply::dgemm`, split over the rayon pool by
 //! rows). Row-major storage, L unit lower triangular and U in place. Factorisation costs
@@ -139,7 +139,7 @@ impl DenseLu {
     /// precision and the sums in double: the solve of a preconditioner, memory-bound (n^2
     /// factor entries read once per solve: at n = 2049, 16 MB in f32 stay in a 32 MB L3 where
     /// 32 MB in f64 did not; measured 6.9 ms per solve in f64, serial). The residual of the
-    /// solve is ~1e-7 cond(A) relative. Blocks of [`SOLVE_BLOCK`] rows: their product with the
+    /// solve is ~1e-7 cond(A) relative. Blocks of `SOLVE_BLOCK` rows: their product with the
     /// part already solved is split over the rayon pool, the triangle within a block is serial.
     pub fn solve(&self, x: &mut [f64]) {
         let n = self.n;

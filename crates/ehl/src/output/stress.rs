@@ -17,9 +17,9 @@
 //!   `x_body_k` (its own columns, m), `x_contact_start_k` / `x_contact_end_k` (nx_body, m): the
 //!   contact-frame x of each material column at its first and last evaluation (a column whose
 //!   span covers the loaded zone saw the whole passage), and `x_feature` (1, m) where
-//!   features[0]'s centre sits in its body's frame (absent without a feature).
+//!   `features[0]`'s centre sits in its body's frame (absent without a feature).
 //! * `stress_passage.png`: x-z sections of the max-over-passage von Mises and of the tau_xz
-//!   range through features[0]'s centre line, depth in um, maxima marked.
+//!   range through `features[0]`'s centre line, depth in um, maxima marked.
 
 use super::colormap::ColorMap;
 use super::plot::{draw_colorbar_on, draw_err, fmt_sig, render_sized, text_style, Fonts};
@@ -285,14 +285,14 @@ fn write_passage(dir: &Path, case: &Case, solution: &Solution, run: &PassageRun)
     write_passage_png(&dir.join(STRESS_PASSAGE_PNG), case, solution, &run.passages[pick], &maps[pick])
 }
 
-/// Where features[0]'s centre sits in its body's material frame (m): x_p(0) (x_body = x at t = 0).
+/// Where `features[0]`'s centre sits in its body's material frame (m): x_p(0) (x_body = x at t = 0).
 fn feature_x_body(case: &Case, solution: &Solution) -> Option<f64> {
     case.features.first()?;
     solution.transient.as_ref()?.timeline.first().map(|r| r.x_p_m)
 }
 
 /// Two x-z sections (max von Mises, tau_xz range) of one body's passage maps through the row of
-/// features[0]'s centre (y = 0 without a feature), depth in um, maxima marked.
+/// `features[0]`'s centre (y = 0 without a feature), depth in um, maxima marked.
 fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage, maps: &PassageMaps) -> Result<()> {
     let g = &p.grid;
     let y0 = case.features.first().map_or(0.0, |f| f.feature.centre.1);

@@ -1,5 +1,5 @@
 //! The outputs of a transient run (`Solution::transient` is `Some`); a steady solution writes
-//! none of them. [`write`] puts them into the output folder beside the steady files (which hold
+//! none of them. [`write()`] puts them into the output folder beside the steady files (which hold
 //! the last step), inside the atomic write of [`super::write_all`].
 //!
 //! | file | content |
@@ -9,9 +9,9 @@
 //! | `timeline.png` | stacked panels over a shared x axis (x_p in mm, or time when x_p does not move): maximum pressure (GPa), minimum and central film, friction coefficient (when any step has one); steps that did not converge are shaded red and marked |
 //! | `passage.gif` | with `output.animation` and at least two frames: the pressure map (fixed colour scale over all frames) above the centre-line pressure and film, x_p marked, x_p and time in the title; an infinite line contact (`ny == 1`) has the profile only |
 //! | `passage.png` | the kept frame with the highest pressure, drawn as a frame of `passage.gif` (always written) |
-//! | (zoom) | on a 2D grid where features[0] is small along y (a pit on a roller), `passage.gif` and `passage.png` show the strip of [`zoom_window`] around it, titled "zoom on features[0]"; the frames and the files for ParaView keep the whole grid |
+//! | (zoom) | on a 2D grid where `features[0]` is small along y (a pit on a roller), `passage.gif` and `passage.png` show the strip of [`zoom_window`] around it, titled "zoom on `features[0]`"; the frames and the files for ParaView keep the whole grid |
 //! | `frames/frame_NNNNN.vtr`, `passage.pvd` | the frames for ParaView: one VTK XML rectilinear grid per frame (`pressure`, `film`; NNNNN the step), and the collection `passage.pvd` that opens them as one time series (`timestep` = time in s) |
-//! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run, and `pressure_zoom.png`, `film_zoom.png` on a strip of three times features[0]'s y extent when that is less than half the map ([`zoom_window`]) |
+//! | `snapshots/xp_<x_p in mm>mm/` | for each `output.snapshots` x_p, the step nearest to it: `fields.npz`, `centerline.csv`, `axial.csv`, `pressure.png`, `film.png`, `centerline.png` as for a steady run, and `pressure_zoom.png`, `film_zoom.png` on a strip of three times `features[0]`'s y extent when that is less than half the map ([`zoom_window`]) |
 //!
 //! Film cells with no material (`+inf`, beyond the end of the shorter roller) are written as
 //! `inf` in `frames.npz` and the `.vtr` frames, exactly as `fields.npz` and `fields.vtk` write
@@ -54,7 +54,7 @@ pub const PASSAGE_PNG: &str = "passage.png";
 pub const PASSAGE_PVD: &str = "passage.pvd";
 /// The folder of the `.vtr` frames that `passage.pvd` lists.
 pub const FRAMES_DIR: &str = "frames";
-/// Zoomed maps of a snapshot around features[0] (see [`zoom_window`]).
+/// Zoomed maps of a snapshot around `features[0]` (see [`zoom_window`]).
 pub const PRESSURE_ZOOM_PNG: &str = "pressure_zoom.png";
 pub const FILM_ZOOM_PNG: &str = "film_zoom.png";
 /// The folder of the snapshot sub-folders.
@@ -527,7 +527,7 @@ pub fn write_snapshots(dir: &Path, case: &Case, solution: &Solution) -> Result<(
     Ok(())
 }
 
-/// The y range (m) of the zoomed maps of a snapshot: three times the y extent of features[0]
+/// The y range (m) of the zoomed maps of a snapshot: three times the y extent of `features[0]`
 /// (all copies of a pattern), centred on it, when that is less than half the grid's y extent
 /// (a pit on a roller: the whole-roller map shows it as a speck); `None` for an infinite line,
 /// a feature unbounded along y, or one that already fills the map.

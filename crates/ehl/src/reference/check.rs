@@ -72,14 +72,14 @@ pub struct ThermalCheck {
     pub points_across_film: usize,
 }
 
-/// `ehl check` notes a transient case whose features[0] advances more than this many cells a
+/// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges
 /// and the time step": the 1 um thesis pit's peak 1.40 / 1.23 / 1.17 GPa at 2.3 / 1.2 / 0.6
 /// cells a step; the Warhadpande & Sadeghi dent at 3.1 cells a step left 23 of 101 steps
 /// unconverged and reached 32 GPa, at 1 cell a step every step converged).
 pub const COARSE_CELLS_PER_STEP: f64 = 2.0;
 
-/// The `motion.travel.steps` that move features[0] by one cell a step, when a run with
+/// The `motion.travel.steps` that move `features[0]` by one cell a step, when a run with
 /// features takes `steps` steps of more than [`COARSE_CELLS_PER_STEP`] cells each; None
 /// otherwise (no features: nothing steep moves).
 pub fn steps_for_one_cell(has_features: bool, steps: usize, cells_per_step: f64) -> Option<usize> {
@@ -97,7 +97,7 @@ pub struct TransientCheck {
     pub xp: (f64, f64),
     /// surface speeds u1, u2 (m/s)
     pub u: (f64, f64),
-    /// the advance per step of features[0]'s surface and of the film's disturbances (u_e), in cells
+    /// the advance per step of `features[0]`'s surface and of the film's disturbances (u_e), in cells
     pub cells_per_step: (f64, f64),
     /// [`steps_for_one_cell`]: Some when the step is coarse (a note)
     pub steps_for_one_cell: Option<usize>,

@@ -39,14 +39,14 @@ pub fn gupta(l: f64, srr: f64, ph_over_e: f64) -> f64 {
 ///
 /// mu the friction coefficient, w' the load per unit length (N/m), u1, u2 the surface speeds
 /// (m/s), a the Hertz half-width (m), k rho c of the (equal) bodies (Blok 1937; ISO/TR 13989-1;
-/// thermal.md [derived]).
+/// thermal.md, marked derived).
 #[allow(clippy::too_many_arguments)]
 pub fn blok_flash(mu: f64, w: f64, u1: f64, u2: f64, a: f64, k: f64, rho: f64, c: f64) -> f64 {
     1.11 * mu * w * (u1.abs().sqrt() - u2.abs().sqrt()).abs()
         / ((k * rho * c).sqrt() * (2.0 * a).sqrt())
 }
 
-/// Exact plane Couette flow with shear heating between walls at T0 (thermal.md [derived]):
+/// Exact plane Couette flow with shear heating between walls at T0 (thermal.md, marked derived):
 /// walls a gap h apart, sliding speed u_s, eta = eta_s exp(-beta (T - T0)), conductivity k;
 /// with Lambda = beta eta_s u_s^2 / k and s = asinh(sqrt(Lambda / 8)):
 ///

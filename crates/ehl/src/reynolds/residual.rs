@@ -234,7 +234,7 @@ pub fn residual(
 /// (speed = u_b / u_e), known up to a constant, which is set by the median offset of G from
 /// the plain rule's face values of F (0 for a pit, whose G and plain values agree away from its
 /// walls; the inlet face value for a waviness). `shift` gets F~ - F, F~ the cell
-/// values whose upwind face values (the rule of [`couette_east`]) are G. The result: storage
+/// values whose upwind face values (the rule of `couette_east`) are G. The result: storage
 /// s_i against the Couette divergence -s_i / speed, i.e. the sliding source
 /// (u_e - u_b) dF/dx discretised through the storage, and exactly 0 in pure rolling (the first
 /// cell of each run keeps its storage uncompensated: its inlet face is a zero-gradient one).

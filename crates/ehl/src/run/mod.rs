@@ -134,7 +134,7 @@ fn operator_bytes(nx: usize, ny: usize, reflected: bool) -> f64 {
 /// Estimates the peak memory of [`solve`] for `case` (see [`MemoryEstimate`]). Per cell
 /// (n = nx ny, 8-byte floats):
 ///
-/// * elastic operators: [`operator_bytes`] (about 200 bytes per cell) on the fine grid and, as the
+/// * elastic operators: `operator_bytes` (about 200 bytes per cell) on the fine grid and, as the
 ///   dry and EHL solvers ask for coarser grids, about 1/3 more;
 /// * dry solver: about 16 work vectors (128 bytes) and the output fields (5 x 8);
 /// * EHL: the flexible GMRES basis, 2 (restart + 1) vectors (restart 80: 1296 bytes), four

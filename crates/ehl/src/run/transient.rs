@@ -36,7 +36,7 @@ pub struct Kinematics {
     pub steps: usize,
     /// x_p at t = 0 (m)
     pub xp0: f64,
-    /// dx_p/dt (m/s): the speed of features[0]'s body, or u_e without a feature
+    /// dx_p/dt (m/s): the speed of `features[0]`'s body, or u_e without a feature
     pub xp_speed: f64,
 }
 

@@ -8,7 +8,7 @@
 //!
 //! xi = x - u_k t,
 //!
-//! so that at t = 0 the two frames coincide; features[0]'s centre, if on this body, sits at
+//! so that at t = 0 the two frames coincide; `features[0]`'s centre, if on this body, sits at
 //! xi = x_p(0). The body-frame grid has the contact grid's spacing dx and is the contact grid
 //! extended against the motion by the travel |u_k| T (T the run's duration):
 //! `nx_body = nx + ceil(|u_k| T / dx)` columns, each material column inside the contact grid

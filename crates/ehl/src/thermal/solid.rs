@@ -50,7 +50,7 @@
 //!   [0, T]; the logarithmic singularity of K0 is thereby integrated exactly.
 //!
 //! The temperature rise at the cell centres is `T[i, j] = sum C(i - i', j - j') q[i', j']`, applied
-//! in O(N log N) by [`crate::elastic::operator::KernelConvolution`].
+//! in O(N log N) by `crate::elastic::operator::KernelConvolution`.
 
 use crate::elastic::kernel;
 use crate::elastic::operator::KernelConvolution;
