@@ -37,12 +37,14 @@ pub fn gupta(l: f64, srr: f64, ph_over_e: f64) -> f64 {
 ///
 /// T_f = 1.11 mu w' |sqrt(u1) - sqrt(u2)| / (sqrt(k rho c) sqrt(2 a))
 ///
-/// mu the friction coefficient, w' the load per unit length (N/m), u1, u2 the surface speeds
-/// (m/s), a the Hertz half-width (m), k rho c of the (equal) bodies (Blok 1937; ISO/TR 13989-1;
-/// thermal.md, marked derived).
+/// mu the friction coefficient (its magnitude: the sign is the force's direction, and the heat
+/// mu w' |u1 - u2| is positive either way; a run near pure rolling can report a negative
+/// coefficient, the rolling traction's), w' the load per unit length (N/m), u1, u2 the surface
+/// speeds (m/s), a the Hertz half-width (m), k rho c of the (equal) bodies (Blok 1937; ISO/TR
+/// 13989-1; thermal.md, marked derived).
 #[allow(clippy::too_many_arguments)]
 pub fn blok_flash(mu: f64, w: f64, u1: f64, u2: f64, a: f64, k: f64, rho: f64, c: f64) -> f64 {
-    1.11 * mu * w * (u1.abs().sqrt() - u2.abs().sqrt()).abs()
+    1.11 * mu.abs() * w * (u1.abs().sqrt() - u2.abs().sqrt()).abs()
         / ((k * rho * c).sqrt() * (2.0 * a).sqrt())
 }
 
@@ -295,6 +297,20 @@ pub fn grubin_thermal_ratio(w: f64, u: f64, g: f64, l: f64, x_heat: Option<f64>)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Blok's formula evaluated by hand (mu 0.05, w' 1e5 N/m, 10 and 5 m/s, a = 0.1 mm, steel:
+    /// 27.90 K), and the friction coefficient's sign does not change it: a run near pure rolling
+    /// reported a negative coefficient (the rolling traction's) and with it a negative flash
+    /// temperature, -0.019 K, on the thesis pit at SRR 0.02.
+    #[test]
+    fn blok_flash_by_hand_and_for_either_sign() {
+        let t = blok_flash(0.05, 1e5, 10.0, 5.0, 1e-4, 46.0, 7850.0, 470.0);
+        assert!((t - 27.9013).abs() < 1e-3, "{t}");
+        assert_eq!(
+            blok_flash(-0.05, 1e5, 10.0, 5.0, 1e-4, 46.0, 7850.0, 470.0),
+            t
+        );
+    }
 
     /// thermal.md: in pure rolling Murch-Wilson and Gupta agree within about 5 % (Gupta with
     /// p_h/E' = 0.003, p_h ~ 0.7 GPa on steel; at 0.005 the two part by 6.4 % at L = 3, Gupta's
