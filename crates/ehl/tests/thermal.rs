@@ -230,8 +230,9 @@ fn film_reduction_sweep() {
 /// A steady thermal solve whose temperature solve fails is solved again with 11 points across
 /// the film, and the run says so: pure rolling on the Barus line at U = 2.2e-10 (L = 5.0,
 /// 256 cells), where 7 points let the thick inlet's film temperature run away (a negative
-/// density). The retry starts afresh, so it must give what a run asking for 11 points gives
-/// (to 1e-9: the same arithmetic, summed in parallel), and that run warns of nothing.
+/// density); the warning says why the first attempt failed. The retry starts afresh, so it
+/// must give what a run asking for 11 points gives (to 1e-9: the same arithmetic, summed in
+/// parallel), and that run warns of nothing.
 #[test]
 fn a_failed_temperature_solve_is_solved_again_with_more_points() {
     let run = |extra: &[&str]| {
@@ -249,7 +250,8 @@ fn a_failed_temperature_solve_is_solved_again_with_more_points() {
     let retried = run(&[]);
     let warned = |w: &[String]| {
         w.iter().any(|w| {
-            w.contains("failed with thermal.points_across_film = 7")
+            // the warning says why the first attempt failed, in parentheses
+            w.contains("failed with thermal.points_across_film = 7 (")
                 && w.contains("solved again with 11 points")
         })
     };

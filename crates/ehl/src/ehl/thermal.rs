@@ -144,9 +144,6 @@ pub struct ThermalResult {
     pub last_change_k: f64,
     /// Newton steps over all outer iterations (the isothermal start not included)
     pub newton_steps: usize,
-    /// the points across the film the solve was retried with after its temperature solve
-    /// failed ([`ThermalParams::refined_points`]), and why the first attempt failed
-    pub refined: Option<(usize, String)>,
 }
 
 /// Solves the thermal problem from the isothermal solution `start` of the same `problem`.
@@ -166,10 +163,8 @@ pub fn solve_thermal(
         match (&first.ehl.reason, thermal.refined_points) {
             (Termination::ThermalFailed(why), Some(nz)) if contact.nz() < nz => {
                 let why = why.clone();
-                contact.set_points_across_film(nz);
-                let mut r = run(problem, params, thermal, start, contact, observer);
-                r.refined = Some((nz, why));
-                r
+                contact.retry_with_points_across_film(nz, why);
+                run(problem, params, thermal, start, contact, observer)
             }
             _ => first,
         }
@@ -394,7 +389,6 @@ fn run(
         outer_iterations: outer,
         last_change_k: change,
         newton_steps,
-        refined: None,
     }
 }
 
@@ -422,10 +416,8 @@ pub(crate) fn relax_factors(
     w: f64,
 ) {
     contact.reynolds_factors(p, active, &mut fresh.flow, &mut fresh.couette);
-    for k in 0..factors.flow.len() {
-        factors.flow[k] += w * (fresh.flow[k] - factors.flow[k]);
-        factors.couette[k] += w * (fresh.couette[k] - factors.couette[k]);
-    }
+    let base = factors.clone();
+    relax(factors, &base, fresh, w);
 }
 
 /// `factors` = `base` + `w` (`fresh` - `base`).

@@ -115,8 +115,11 @@ pub fn summarise_contact(
     if let Some(spec) = &case.thermal {
         let asked = spec.lubricant.points_across_film;
         if contact.nz() != asked {
+            let why = contact
+                .retry_reason()
+                .map_or(String::new(), |w| format!(" ({w})"));
             summary.warnings.push(format!(
-                "the temperature solve failed with thermal.points_across_film = {asked}; the run was solved again with {} points across the film: set them in the case to start there",
+                "the temperature solve failed with thermal.points_across_film = {asked}{why}; the run was solved again with {} points across the film: set them in the case to start there",
                 contact.nz()
             ));
         }

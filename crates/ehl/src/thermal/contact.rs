@@ -10,14 +10,18 @@
 //! 1. each grid line's film temperature for the current surface temperatures
 //!    ([`super::film_energy::solve_lines`], the laws at (p, T) inside);
 //! 2. the heat flux into each body from the film (the consistent wall fluxes);
-//! 3. each surface temperature T0 + the moving-heat-source response to that flux (Jaeger),
+//! 3. each surface temperature towards T0 + the moving-heat-source response to that flux
+//!    (Jaeger), the film's conduction between the surfaces taken into account
+//!    (`ThermalContact::update_surfaces`),
 //!
 //! until the surface temperatures change by less than [`ContactOptions::surface_tol`]. The grid
 //! lines exchange heat through the side flow (v dT/dy, [`ContactOptions::side_flow`]): each
 //! film iteration takes its neighbours' temperatures and the y mass fluxes of the last one
-//! (`film_energy::SideFlow`). Why it
-//! converges: the film's conductance k_f / h (~1e5 W/(m^2 K) for 1 um) is well below a steel
-//! body's k sqrt(U / (kappa x)) (~1e6 at 1 m/s over 0.1 mm), so the loop gain is ~0.1.
+//! (`film_energy::SideFlow`). The plain update of step 3 (T0 + the response) converges while
+//! the film's conductance k_f / h (~1e5 W/(m^2 K) for 1 um) is below the body's
+//! k sqrt(U / (kappa x)) (~1e6 for steel at 1 m/s over 0.1 mm: loop gain ~0.1); a slow body
+//! under a thin film turns that gain above 1 (a ball at 0.09 m/s under 0.2 um: ~70), hence
+//! the linearised update.
 //!
 //! # Neglected (said in docs/thermal.md)
 //!
@@ -222,6 +226,9 @@ pub struct ThermalContact {
     /// iteration's change, where the film is at most RESIDUAL_FILM_RATIO times its row's
     /// thinnest) and the bodies' (the last surface-temperature update's change)
     residual: [f64; 2],
+    /// why the solve was started again with more points across the film, if it was
+    /// ([`ThermalContact::retry_with_points_across_film`])
+    retry_reason: Option<String>,
 }
 
 /// The side flow of one grid line (see `film_energy::SideFlow`), owned.
@@ -287,6 +294,7 @@ impl ThermalContact {
             dpdx: vec![0.0; n],
             step: None,
             residual: [f64::INFINITY; 2],
+            retry_reason: None,
             laws,
         })
     }
@@ -308,6 +316,19 @@ impl ThermalContact {
         self.material = vec![false; g.len()];
         self.step = None;
         self.residual = [f64::INFINITY; 2];
+    }
+
+    /// [`ThermalContact::set_points_across_film`] for a solve started again after a failed
+    /// temperature solve, `why` the failure (kept for the run's warning:
+    /// [`ThermalContact::retry_reason`]).
+    pub fn retry_with_points_across_film(&mut self, nz: usize, why: String) {
+        self.set_points_across_film(nz);
+        self.retry_reason = Some(why);
+    }
+
+    /// Why the solve was started again with more points across the film (None: it was not).
+    pub fn retry_reason(&self) -> Option<&str> {
+        self.retry_reason.as_deref()
     }
 
     /// Starts a time step of `dt` seconds from the present temperatures (a transient run):
