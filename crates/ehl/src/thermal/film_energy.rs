@@ -274,8 +274,8 @@ pub struct LineCoefficients {
 /// Energy accounting of a line for a temperature field and the coefficients it was solved
 /// with. Per unit length along y.
 ///
-/// Balance: sum_i dx (generated_i - q1_i - q2_i - stored_i - side_out_i) = `enthalpy_flux[nx]` -
-/// `enthalpy_flux[0]`.
+/// Balance: sum_i dx (generated_i - q1_i - q2_i - stored_i - side_out_i) =
+/// `enthalpy_flux[nx]` - `enthalpy_flux[0]`.
 ///
 /// The wall heat fluxes `q1`, `q2` are the *consistent* fluxes (Gresho, Lee & Sani 1987, the
 /// flux recovered from the discrete balance): the gradient flux k_f dT/dz of the collocation
@@ -395,8 +395,8 @@ pub struct LineSolution {
 }
 
 /// The coefficients of a line at the temperature `t` (K, nx * nz, i-major): the laws at each
-/// point, the profile per column ([`super::film::shear_thinning_profile`]), the mass flux, heating and
-/// compression coefficient. Also returns the profiles and the number of columns whose
+/// point, the profile per column ([`super::film::shear_thinning_profile`]), the mass flux,
+/// heating and compression coefficient. Also returns the profiles and the number of columns whose
 /// shear-thinning iteration did not converge.
 pub fn line_coefficients<L: FilmLaws + ?Sized>(
     rule: &Lobatto,
