@@ -730,7 +730,7 @@ fn balance(problem: &TransientProblem, sys: &System, st: &State) -> MassBalance 
     let base = &problem.base;
     let b = base.hertz_half_width;
     let hs = b * b / base.reduced_radius;
-    let m = residual::mass_flow(&sys.rg, &sys.fields(&st));
+    let m = residual::mass_flow(&sys.rg, &sys.fields(st));
     let storage: f64 = match &sys.squeeze {
         Some(s) => {
             (0..sys.n())

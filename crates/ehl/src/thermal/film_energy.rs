@@ -1130,6 +1130,55 @@ mod tests {
     };
     const T0: f64 = 313.0;
 
+    /// A line of cells `dx` (m) wide at zero pressure with the film `h` and the pressure
+    /// gradient `dpdx` given, both walls at T0 (`walls`: nx values of T0; `zeros`: nx zeros)
+    /// moving at `u1`, `u2` (m/s).
+    fn prescribed<'a>(
+        dx: f64,
+        h: &'a [f64],
+        dpdx: &'a [f64],
+        zeros: &'a [f64],
+        walls: &'a [f64],
+        u1: f64,
+        u2: f64,
+    ) -> Line<'a> {
+        Line {
+            dx,
+            h,
+            p: zeros,
+            dpdx,
+            dpdy: zeros,
+            u1,
+            u2,
+            t1: walls,
+            t2: walls,
+            t_in: T0,
+            poiseuille_flux_x: None,
+            transient: None,
+            side: None,
+        }
+    }
+
+    /// One column without x-variation (dx = +inf, no convection): film `h`, pressure `p`,
+    /// surface 1 at rest at T0, surface 2 moving at `u2` (m/s) at the temperature `t2` (K).
+    fn column<'a>(h: &'a [f64], p: &'a [f64], u2: f64, t2: &'a [f64]) -> Line<'a> {
+        Line {
+            dx: f64::INFINITY,
+            h,
+            p,
+            dpdx: &[0.0],
+            dpdy: &[0.0],
+            u1: 0.0,
+            u2,
+            t1: &[T0],
+            t2,
+            t_in: T0,
+            poiseuille_flux_x: None,
+            transient: None,
+            side: None,
+        }
+    }
+
     /// The floor's margin: 30 K on an unloaded line and an incompressible oil; 1.5 times the
     /// adiabatic cooling alpha T p / (rho c), computed here by hand, at 0.7 GPa with D =
     /// 6.5e-4 1/K and the hottest boundary at 320 K (1.5 x 84.4 K = 126.7 K); held so that the
@@ -1198,21 +1247,8 @@ mod tests {
         };
         let us = (lambda * OIL.conductivity / (laws.beta * laws.eta0)).sqrt();
         let h = 1e-6;
-        let line = Line {
-            dx: f64::INFINITY,
-            h: &[h],
-            p: &[0.0],
-            dpdx: &[0.0],
-            dpdy: &[0.0],
-            u1: 0.0,
-            u2: us,
-            t1: &[T0],
-            t2: &[T0],
-            t_in: T0,
-            poiseuille_flux_x: None,
-            transient: None,
-            side: None,
-        };
+        let hs = [h];
+        let line = column(&hs, &[0.0], us, &[T0]);
         let opts = LineOptions {
             tol: 1e-11,
             max_iter: 2000,
@@ -1257,22 +1293,9 @@ mod tests {
             conductivity: k,
             ..OIL
         };
+        let ps = [p];
         let solve = |oil: &OilThermal| {
-            let line = Line {
-                dx: f64::INFINITY,
-                h: &[1e-6],
-                p: &[p],
-                dpdx: &[0.0],
-                dpdy: &[0.0],
-                u1: 0.0,
-                u2: 20.0,
-                t1: &[T0],
-                t2: &[T0 + 5.0],
-                t_in: T0,
-                poiseuille_flux_x: None,
-                transient: None,
-                side: None,
-            };
+            let line = column(&[1e-6], &ps, 20.0, &[T0 + 5.0]);
             let opts = LineOptions {
                 tol: 1e-12,
                 max_iter: 2000,
@@ -1392,21 +1415,7 @@ mod tests {
         let mut t_start: Option<Vec<f64>> = None;
         let mut sol = None;
         for _ in 0..40 {
-            let line = Line {
-                dx,
-                h: &h,
-                p: &zeros,
-                dpdx: &dpdx,
-                dpdy: &zeros,
-                u1,
-                u2,
-                t1: &walls,
-                t2: &walls,
-                t_in: T0,
-                poiseuille_flux_x: None,
-                transient: None,
-                side: None,
-            };
+            let line = prescribed(dx, &h, &dpdx, &zeros, &walls, u1, u2);
             let s = solve_line(&rule, &laws, &OIL, &line, t_start.as_deref(), &opts).unwrap();
             assert!(
                 s.converged,
@@ -1465,23 +1474,12 @@ mod tests {
         };
         let step = |t_old: &[f64], rho_h_old: &[f64], inv_dt: f64| {
             let line = Line {
-                dx,
-                h: &h,
-                p: &zeros,
-                dpdx: &dpdx,
-                dpdy: &zeros,
-                u1,
-                u2,
-                t1: &walls,
-                t2: &walls,
-                t_in: T0,
-                poiseuille_flux_x: None,
                 transient: Some(LineTransient {
                     inv_dt,
                     t_old,
                     rho_h_old,
                 }),
-                side: None,
+                ..prescribed(dx, &h, &dpdx, &zeros, &walls, u1, u2)
             };
             solve_line(&rule, &laws, &OIL, &line, Some(&steady.t), &opts).unwrap()
         };
@@ -1593,19 +1591,8 @@ mod tests {
                 } else {
                     (&hot, &cold)
                 };
+                let hs = [h];
                 let line = Line {
-                    dx: f64::INFINITY,
-                    h: &[h],
-                    p: &[0.0],
-                    dpdx: &[0.0],
-                    dpdy: &[0.0],
-                    u1: 0.0,
-                    u2: 0.0,
-                    t1: &[T0],
-                    t2: &[T0],
-                    t_in: T0,
-                    poiseuille_flux_x: None,
-                    transient: None,
                     side: Some(SideFlow {
                         inv_dy: 1.0 / dy,
                         north: &f,
@@ -1613,6 +1600,7 @@ mod tests {
                         t_north,
                         t_south,
                     }),
+                    ..column(&hs, &[0.0], 0.0, &[T0])
                 };
                 let opts = LineOptions {
                     tol: 1e-12,
@@ -1670,18 +1658,6 @@ mod tests {
         let zeros = vec![0.0; nx];
         let walls = vec![T0; nx];
         let line = Line {
-            dx,
-            h: &h,
-            p: &zeros,
-            dpdx: &dpdx,
-            dpdy: &zeros,
-            u1: 15.0,
-            u2: 5.0,
-            t1: &walls,
-            t2: &walls,
-            t_in: T0,
-            poiseuille_flux_x: None,
-            transient: None,
             side: Some(SideFlow {
                 inv_dy: 1.0 / 2e-5,
                 north: &north,
@@ -1689,6 +1665,7 @@ mod tests {
                 t_north: &t_north,
                 t_south: &t_south,
             }),
+            ..prescribed(dx, &h, &dpdx, &zeros, &walls, 15.0, 5.0)
         };
         let laws = ExpLaw {
             eta0: 0.05,
