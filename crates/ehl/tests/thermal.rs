@@ -663,6 +663,40 @@ fn a_slow_ball_with_sliding_runs_thermally() {
     }
 }
 
+/// `temperature.png` of a 2D grid carries the three maps (film, surface 1, surface 2) below
+/// the centre-line panels; a line contact has the panels only. Checked by the PNG's size and
+/// that each is a real picture (well above an empty frame's bytes). The ball at 32^2 and the
+/// Table 3.7 line at 128 cells (about a second each).
+#[test]
+fn temperature_png_has_maps_on_a_2d_grid() {
+    use ehl::output::temperature::{LINE_PANELS, MAP_HEIGHT};
+    let dir = tempfile::tempdir().unwrap();
+    let ball = format!(
+        "{}\n{OIL}",
+        include_str!("../../../examples/ehl_ball_on_glass.toml")
+    );
+    for (name, text, sets, height) in [
+        (
+            "ball",
+            ball.as_str(),
+            vec!["grid.nx=32", "grid.ny=32"],
+            LINE_PANELS + 3 * MAP_HEIGHT,
+        ),
+        ("line", THERMAL, vec!["grid.nx=128"], LINE_PANELS),
+    ] {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let c = parse_str(text, name, &sets).unwrap();
+        let s = solve(&c);
+        let out = dir.path().join(name);
+        ehl::output::write_all(&out, &c, &s).unwrap();
+        let png = std::fs::read(out.join("temperature.png")).unwrap();
+        let be = |k: usize| u32::from_be_bytes([png[k], png[k + 1], png[k + 2], png[k + 3]]);
+        assert_eq!(&png[12..16], b"IHDR");
+        assert_eq!((be(16), be(20)), (1000, height), "{name}");
+        assert!(png.len() > 50_000, "{name}: {} bytes", png.len());
+    }
+}
+
 // ------------------------------------------------------------------ transient thermal runs
 
 const GROOVE: &str = include_str!("../../../examples/ehl_transient_line_groove.toml");

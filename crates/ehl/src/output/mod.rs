@@ -216,7 +216,7 @@ fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
     transient::write(tmp, case, solution)?;
     stress::write(tmp, case, solution)?;
-    temperature::write(tmp, solution)?;
+    temperature::write(tmp, case, solution)?;
     Ok(())
 }
 

@@ -406,25 +406,27 @@ const MAP_FONTS: Fonts = Fonts {
 };
 
 /// What a map shows.
-struct MapSpec<'a> {
-    title: &'a str,
-    lines: Vec<String>,
-    grid: &'a Grid,
+pub(super) struct MapSpec<'a> {
+    pub title: &'a str,
+    pub lines: Vec<String>,
+    pub grid: &'a Grid,
     /// values in SI, row-major
-    values: &'a [f64],
+    pub values: &'a [f64],
     /// SI -> display unit factor
-    scale: f64,
+    pub scale: f64,
     /// colour range in display units
-    range: Range<f64>,
-    cmap: ColorMap,
-    bar_label: String,
-    y_label: &'a str,
+    pub range: Range<f64>,
+    pub cmap: ColorMap,
+    pub bar_label: String,
+    pub y_label: &'a str,
     /// (x, y) in m, label; drawn as a cross (`cross`) or a circle
-    marker: Option<(f64, f64, String)>,
-    cross: bool,
+    pub marker: Option<(f64, f64, String)>,
+    pub cross: bool,
 }
 
-fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawResult<()> {
+/// A map of `spec` on `root` ([`WIDTH`] wide): the title band, the map with its axes and
+/// marker, its colour bar.
+pub(super) fn draw_map(root: &DrawingArea<BitMapBackend, Shift>, spec: &MapSpec) -> DrawResult<()> {
     let g = spec.grid;
     let area = titled(root, spec.title, &spec.lines)?;
     let (main, bar_area) = area.split_horizontally(WIDTH - 150);
@@ -854,7 +856,7 @@ pub(super) fn arg_min(v: &[f64]) -> (f64, usize) {
 }
 
 /// A colour or axis range from `lo` to `hi`, made drawable by [`drawable_range`].
-fn nonempty(lo: f64, hi: f64) -> Range<f64> {
+pub(super) fn nonempty(lo: f64, hi: f64) -> Range<f64> {
     drawable_range(lo, hi)
 }
 

@@ -5,10 +5,16 @@
 //!   collocation points across z along the centre grid line (`section_y`, m).
 //! * `temperature.png`: along the centre line, the temperature rise above the inlet of the film
 //!   (its maximum across z and mid-film) and of both surfaces; below, the film temperature
-//!   across the film (z/h from body 1 to body 2) against x.
+//!   across the film (z/h from body 1 to body 2) against x. On a 2D grid (a finite roller, a
+//!   ball) three maps follow, on one colour scale: the film's largest rise across z and the
+//!   rise of each surface, each with its maximum marked.
 
 use super::colormap::ColorMap;
-use super::plot::{draw_colorbar_on, draw_err, fmt_sig, render_sized, text_style, Fonts};
+use super::plot::{
+    draw_colorbar_on, draw_err, draw_map, fmt_sig, nonempty, render_sized, text_style,
+    y_axis_label, Fonts, MapSpec,
+};
+use crate::case::Case;
 use crate::solution::{Solution, TemperatureFields};
 use crate::Result;
 use ndarray::{Array1, Array2};
@@ -18,14 +24,19 @@ use std::path::Path;
 pub const TEMPERATURE_NPZ: &str = "temperature.npz";
 pub const TEMPERATURE_PNG: &str = "temperature.png";
 
-/// Writes the temperature files into `dir` when the solution has temperatures.
-pub fn write(dir: &Path, solution: &Solution) -> Result<()> {
+/// Writes the temperature files of `case` into `dir` when the solution has temperatures.
+pub fn write(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
     let Some(t) = &solution.temperature else {
         return Ok(());
     };
     write_npz(&dir.join(TEMPERATURE_NPZ), solution, t)?;
-    write_png(&dir.join(TEMPERATURE_PNG), solution, t)
+    write_png(&dir.join(TEMPERATURE_PNG), case, solution, t)
 }
+
+/// The height (px) of the centre-line panels of `temperature.png`, and of each map below them
+/// on a 2D grid.
+pub const LINE_PANELS: u32 = 860;
+pub const MAP_HEIGHT: u32 = 560;
 
 fn write_npz(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<()> {
     let g = &solution.grid;
@@ -52,7 +63,7 @@ fn write_npz(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
     npz.finish()
 }
 
-fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<()> {
+fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureFields) -> Result<()> {
     let g = &solution.grid;
     let j = t.section_row;
     let row = |v: &[f64]| -> Vec<f64> {
@@ -107,8 +118,63 @@ fn write_png(path: &Path, solution: &Solution, t: &TemperatureFields) -> Result<
         .fold((t.inlet, t.inlet), |(a, b), &x| (a.min(x), b.max(x)));
     let lo = (tmin - t.inlet).min(0.0);
     let span = (tmax - t.inlet - lo).max(1e-3);
-    render_sized(path, (1000, 860), |root| {
-        let (upper, lower) = root.split_vertically(430);
+    // the maps of a 2D grid: rise above the inlet (K), NaN where no film was solved
+    let maps: Vec<(&str, Vec<f64>)> = if g.ny > 1 {
+        [
+            ("film, largest across z", &t.max_film),
+            ("surface of body 1", &t.surface_1),
+            ("surface of body 2", &t.surface_2),
+        ]
+        .into_iter()
+        .map(|(name, v)| (name, v.iter().map(|x| x - t.inlet).collect()))
+        .collect()
+    } else {
+        Vec::new()
+    };
+    let (map_lo, map_hi) = maps
+        .iter()
+        .flat_map(|(_, v)| v.iter().copied())
+        .filter(|x| x.is_finite())
+        .fold((0.0f64, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    let height = LINE_PANELS + MAP_HEIGHT * maps.len() as u32;
+    render_sized(path, (1000, height), |root| {
+        let (lines_area, maps_area) = root.split_vertically(LINE_PANELS);
+        let mut rest = maps_area;
+        for (name, rise) in &maps {
+            let (area, below) = rest.split_vertically(MAP_HEIGHT);
+            rest = below;
+            let (top, k) = super::plot::arg_max(rise);
+            let title = format!("Temperature rise above the inlet: {name}");
+            draw_map(
+                &area,
+                &MapSpec {
+                    title: &title,
+                    lines: vec![
+                        format!(
+                            "largest {} K at x = {} mm, y = {} mm; one colour scale for the three maps",
+                            fmt_sig(top, 3),
+                            fmt_sig(g.x(k % g.nx) * mm, 3),
+                            fmt_sig(g.y(k / g.nx) * mm, 3)
+                        ),
+                        "grey: outside the film the temperature is solved on (the far inlet, the cavitated outlet)".into(),
+                    ],
+                    grid: g,
+                    values: rise,
+                    scale: 1.0,
+                    range: nonempty(map_lo, map_hi.max(map_lo + 1e-3)),
+                    cmap: ColorMap::Inferno,
+                    bar_label: "T - T0 (K)".into(),
+                    y_label: y_axis_label(case),
+                    marker: Some((
+                        g.x(k % g.nx),
+                        g.y(k / g.nx),
+                        format!("{} K", fmt_sig(top, 3)),
+                    )),
+                    cross: true,
+                },
+            )?;
+        }
+        let (upper, lower) = lines_area.split_vertically(430);
         let title = format!(
             "Temperature rise above the inlet ({} K = {} degC), y = {} mm",
             fmt_sig(t.inlet, 4),
