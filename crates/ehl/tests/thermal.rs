@@ -551,6 +551,73 @@ fn a_conductivity_growing_with_pressure_cools_the_film_as_conduction_says() {
     );
 }
 
+/// The side flow (v dT/dy) on the thesis roller, 128 x 64 cells, SRR 0.3, with and without it
+/// (`thermal.side_flow`). The side flow runs out through the roller ends and vanishes on the
+/// centre line by symmetry, so:
+/// * the centre rows' film temperature must not move (1e-3 K; measured 5e-5), the end rows'
+///   must (more than 0.05 K; measured 0.23 K where the film rises by ~1 K);
+/// * the oil leaving through the ends carries enthalpy out: the heat convected grows (measured
+///   0.3456 -> 0.3491 W), by less than c x the side leakage x the largest rise, which no oil
+///   can exceed (3.6 W);
+/// * the contact's energy balance still closes (1 %; measured 1.5e-4).
+///
+/// Without the side flow wired into the contact, the first two fail.
+#[test]
+fn the_side_flow_moves_heat_at_the_roller_ends_only() {
+    let file = "ehl_thesis_ch2_roller.toml";
+    let path = format!("{}/../../examples/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = format!("{}\n{OIL}", std::fs::read_to_string(&path).unwrap());
+    let run = |side: bool| {
+        let sets: Vec<String> = [
+            "grid.nx=128",
+            "grid.ny=64",
+            "motion.slide_to_roll=0.3",
+            &format!("thermal.side_flow={side}"),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let s = solve(&parse_str(&text, file, &sets).unwrap());
+        assert!(
+            s.summary.converged,
+            "side flow {side}: {}",
+            s.summary.termination
+        );
+        let err = s.summary.energy_balance_error.unwrap();
+        assert!(err.abs() < 1e-2, "side flow {side}: energy balance {err}");
+        s
+    };
+    let (with, without) = (run(true), run(false));
+    let (a, b) = (
+        &with.temperature.as_ref().unwrap().mid_film,
+        &without.temperature.as_ref().unwrap().mid_film,
+    );
+    let (nx, ny) = (128, 64);
+    let row_change = |j: usize| {
+        (0..nx)
+            .map(|i| (a[j * nx + i] - b[j * nx + i]).abs())
+            .filter(|d| d.is_finite())
+            .fold(0.0f64, f64::max)
+    };
+    let centre = row_change(ny / 2 - 1).max(row_change(ny / 2));
+    let ends = row_change(0).max(row_change(ny - 1));
+    let (cw, co) = (
+        with.summary.heat_convected_w.unwrap(),
+        without.summary.heat_convected_w.unwrap(),
+    );
+    let leak = with.summary.side_leakage_kg_s.unwrap();
+    let rise = with.summary.max_film_temperature_k.unwrap() - 313.0;
+    println!(
+        "side flow: centre rows {centre:.1e} K, end rows {ends:.3} K; heat convected {co:.4} -> \
+         {cw:.4} W (bound {:.2} W)",
+        2000.0 * leak * rise
+    );
+    assert!(centre < 1e-3, "centre rows moved by {centre} K");
+    assert!(ends > 0.05, "end rows moved by {ends} K only");
+    assert!(cw > co, "heat convected {co} -> {cw} W");
+    assert!(cw - co < 2000.0 * leak * rise, "{co} -> {cw} W");
+}
+
 /// A finite roller (the thesis chapter 2 rollers, 128 x 64 cells, pure rolling) and a ball on
 /// glass run thermally on 2D grids, the grid lines exchanging heat through the side flow
 /// (v dT/dy): the exchanges cancel between lines up to the lag of one film iteration, so the
