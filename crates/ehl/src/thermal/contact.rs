@@ -705,9 +705,10 @@ impl ThermalContact {
     /// change into account: with the surfaces moved by d_b, a film that conducts between them
     /// changes its fluxes by -C (d_1 - d_2) and -C (d_2 - d_1), C = `conductance` (W/(m^2 K),
     /// k_f / h where the film was solved), and a film that warms with them generates less:
-    /// each flux falls by S (d_1 + d_2) more, S = `softening` = beta G / 4 (G the film's heat
-    /// per area, beta = -d ln eta / dT; its mean temperature moves by (d_1 + d_2) / 2 and half
-    /// the lost heat is each surface's). The changes d solve
+    /// each flux falls by S (d_1 + d_2) more, S = `softening` = beta G / 4 (W/(m^2 K); G the
+    /// film's heat per area, W/m^2, beta = -d ln eta / dT, 1/K, of the low-shear law; its mean
+    /// temperature moves by (d_1 + d_2) / 2 and half the lost heat is each surface's; our own
+    /// linearisation, not from the literature). The changes d (K) solve
     ///
     /// d_b + R_b [C (d_b - d_other) + S (d_b + d_other)] = b_b,  b_b = T0 + R_b q_b - T_b,
     ///
