@@ -766,6 +766,70 @@ fn a_faster_ball_with_a_limiting_shear_stress_settles() {
     }
 }
 
+/// Fast sliding on the glass-disc ball example (64^2 cells), the cases that failed before the
+/// film-body update took the film's own answer to its surfaces (`film_energy::wall_response`)
+/// and the film iteration its heating's fall with temperature (`LineOptions::
+/// linearise_heating`): the disc at rest (SRR 2) at 1 m/s with the example's Newtonian oil and
+/// with Carreau and a limiting shear stress, the Newtonian oil at 3 m/s (SRR 1; its isothermal
+/// friction coefficient is 0.19) and the Carreau oil at 3 m/s, SRR 1.5. Each settles with its
+/// energy balance within the issue's 1 % (measured 1.5e-3 at most), and:
+/// * with the disc at rest, the heat goes into the moving steel ball, not the glass (the
+///   steel at 2 m/s takes it away far faster than a glass disc at rest conducts it: measured
+///   98.6 % of the heat into the ball); the glass surface is the hotter one;
+/// * the Newtonian oil at 3 m/s heats until its friction falls far below the isothermal
+///   0.19 (measured 0.014): a thermal friction below 0.05 is asked.
+#[test]
+fn a_fast_sliding_ball_settles_with_either_oil() {
+    let text = include_str!("../../../examples/ehl_thermal_ball.toml");
+    let carreau = "lubricant.rheology={ model = \"carreau\", shear_modulus = 4.5e6, power_law_index = 0.57, limiting_shear_coefficient = 0.07 }";
+    for (u, srr, oil) in [
+        (1.0, 2.0, None),
+        (1.0, 2.0, Some(carreau)),
+        (3.0, 1.0, None),
+        (3.0, 1.5, Some(carreau)),
+    ] {
+        let mut sets = vec![
+            "grid.nx=64".to_string(),
+            "grid.ny=64".to_string(),
+            format!("motion.entrainment_speed={u}"),
+            format!("motion.slide_to_roll={srr}"),
+        ];
+        sets.extend(oil.map(str::to_string));
+        let name = if oil.is_some() {
+            "Carreau"
+        } else {
+            "Newtonian"
+        };
+        let s = solve(&parse_str(text, "ehl_thermal_ball.toml", &sets).unwrap());
+        let m = &s.summary;
+        assert!(m.converged, "{name}, {u} m/s, SRR {srr}: {}", m.termination);
+        let err = m.energy_balance_error.unwrap();
+        assert!(
+            err.abs() < 1e-2,
+            "{name}, {u} m/s, SRR {srr}: energy balance {err}"
+        );
+        let f = m.friction_coefficient.unwrap();
+        let bodies = m.heat_to_body_w.unwrap();
+        let surfaces = m.max_surface_temperature_k.unwrap();
+        println!(
+            "{name}, u_e {u} m/s, SRR {srr}: f {f:.4}, outer iterations {}, balance {err:.1e}, \
+             heat into ball / disc {:.3} / {:.3} W, hottest surfaces {:.1} / {:.1} K",
+            m.thermal_iterations.unwrap(),
+            bodies[0],
+            bodies[1],
+            surfaces[0],
+            surfaces[1]
+        );
+        if srr == 2.0 {
+            assert!(bodies[0] > 10.0 * bodies[1], "{name}: {bodies:?}");
+            assert!(surfaces[1] > surfaces[0], "{name}: {surfaces:?}");
+        }
+        if oil.is_none() && u == 3.0 {
+            assert!(f < 0.05, "{f}");
+        }
+    }
+}
+
 /// `temperature.png` of a 2D grid carries the three maps (film, surface 1, surface 2) below
 /// the centre-line panels; a line contact has the panels only. Checked by the PNG's size and
 /// that each is a real picture (well above an empty frame's bytes). The ball at 32^2 and the

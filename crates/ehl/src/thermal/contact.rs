@@ -11,8 +11,8 @@
 //!    ([`super::film_energy::solve_lines`], the laws at (p, T) inside);
 //! 2. the heat flux into each body from the film (the consistent wall fluxes);
 //! 3. each surface temperature towards T0 + the moving-heat-source response to that flux
-//!    (Jaeger), the film's conduction between the surfaces taken into account
-//!    (`ThermalContact::update_surfaces`),
+//!    (Jaeger), each film column's own answer to its surface temperatures taken into
+//!    account (`ThermalContact::update_surfaces`, `film_energy::wall_response`),
 //!
 //! until the surface temperatures change by less than [`ContactOptions::surface_tol`]. The grid
 //! lines exchange heat through the side flow (v dT/dy, [`ContactOptions::side_flow`]): each
@@ -26,7 +26,8 @@
 //! # Neglected (said in docs/thermal.md)
 //!
 //! * In-plane conduction in the film (negligible: film Peclet ~1e3).
-//! * The cavitated zone is treated as a full film at ambient pressure.
+//! * The cavitated zone is treated as a full film at ambient pressure; no temperature is
+//!   solved downstream of a row's film, whose Reynolds factors are those of its last cell.
 
 use super::collocation::Lobatto;
 use super::film::{FilmLaws, FilmProfile, OilThermal};
@@ -585,16 +586,18 @@ impl ThermalContact {
                     q[1][k] = b;
                 }
             }
-            // the film's conductance between the two surfaces, k_f / h, where it was solved
-            let conductance: Vec<f64> = (0..n)
-                .map(|k| {
+            // how the film's wall fluxes answer the surface temperatures, where it was solved
+            // (`film_energy::wall_response`; a film that only conducts: -+ k_f / h)
+            let mut response = vec![[0.0; 4]; n];
+            for (j, s) in sols.iter().enumerate() {
+                let Some(s) = s else { continue };
+                for (i, g) in s.wall_response.iter().enumerate() {
+                    let k = j * nx + start[j] + i;
                     if wet[k] {
-                        self.oil.conductivity_at(pp[k]) / hh[k]
-                    } else {
-                        0.0
+                        response[k] = *g;
                     }
-                })
-                .collect();
+                }
+            }
             // and how fast its heating falls as it warms: a film whose mean temperature rises by
             // dT generates beta G dT less (G its heat per area, beta = -d ln eta / dT of the
             // low-shear law at its mid-film temperature, an upper bound for a shear-thinning
@@ -615,7 +618,7 @@ impl ThermalContact {
                     }
                 }
             }
-            let change = self.update_surfaces(&q, &conductance, &softening, &mut rise);
+            let change = self.update_surfaces(&q, &response, &softening, &mut rise);
             for (j, s) in sols.iter().enumerate() {
                 if let Some(s) = s {
                     let at = start[j] * nz;
@@ -702,25 +705,32 @@ impl ThermalContact {
     /// 1 um, but ~70 for a ball at 0.09 m/s on a 0.17 um film (measured: the surface
     /// temperatures of the EHL-FBNS ball at SRR 0.05 oscillated with growing amplitude to
     /// -150 degC and the run failed). So the update takes the film's response to its own
-    /// change into account: with the surfaces moved by d_b, a film that conducts between them
-    /// changes its fluxes by -C (d_1 - d_2) and -C (d_2 - d_1), C = `conductance` (W/(m^2 K),
-    /// k_f / h where the film was solved), and a film that warms with them generates less:
+    /// change into account: with the surfaces moved by d_b, the film changes its fluxes by
+    /// G_b1 d_1 + G_b2 d_2, G = `response` (W/(m^2 K), per cell `[dq1/dT1, dq1/dT2, dq2/dT1,
+    /// dq2/dT2]`, [`super::film_energy::wall_response`]: each column's own answer, its
+    /// neighbours held; -+ k_f / h for a film that only conducts, stronger where oil arrives
+    /// from upstream at another temperature), and a film that warms with them generates less:
     /// each flux falls by S (d_1 + d_2) more, S = `softening` = beta G / 4 (W/(m^2 K); G the
     /// film's heat per area, W/m^2, beta = -d ln eta / dT, 1/K, of the low-shear law; its mean
     /// temperature moves by (d_1 + d_2) / 2 and half the lost heat is each surface's; our own
     /// linearisation, not from the literature). The changes d (K) solve
     ///
-    /// d_b + R_b [C (d_b - d_other) + S (d_b + d_other)] = b_b,  b_b = T0 + R_b q_b - T_b,
+    /// d_b - R_b [G_bb d_b + G_bo d_other - S (d_b + d_other)] = b_b,  b_b = T0 + R_b q_b - T_b,
     ///
-    /// by GMRES (each product two convolutions). Only the film's conduction and the heating's
-    /// temperature slope are linearised: its convection follows in the next film iteration.
-    /// Without the slope, a ball at 3 m/s and SRR 1 with a shear-thinning oil oscillated (beta
-    /// 0.052 1/K: the heat falls by up to 5 % a kelvin) and failed. Where C R is small (a fast
-    /// body, a thick film) d is the plain update, in one or two iterations.
+    /// by GMRES (each product two convolutions). Only each column's own answer and the
+    /// heating's temperature slope are linearised: what a surface change does downstream
+    /// follows in the next film iteration. With k_f / h in place of the column's answer, a
+    /// glass disc at rest under a ball sliding at 2 m/s went 66 K cold in the first update
+    /// and oscillated, growing, to the viscosity law's pole: in the inlet the oil arrives at
+    /// T0 and the glass's heat enters a thermal layer much thinner than the film (several
+    /// times k_f / h). Without the slope, a ball at 3 m/s and SRR 1 with a shear-thinning oil
+    /// oscillated (beta 0.052 1/K: the heat falls by up to 5 % a kelvin) and failed. Where
+    /// G R is small (a fast body, a thick film) d is the plain update, in one or two
+    /// iterations.
     fn update_surfaces(
         &mut self,
         q: &[Vec<f64>; 2],
-        conductance: &[f64],
+        response: &[[f64; 4]],
         softening: &[f64],
         rise: &mut [f64],
     ) -> f64 {
@@ -734,7 +744,7 @@ impl ThermalContact {
             }
         }
         let mut d = vec![0.0; 2 * n];
-        if conductance.iter().any(|&c| c > 0.0) {
+        if response.iter().any(|g| g.iter().any(|&v| v != 0.0)) {
             let solids = &mut self.solids;
             let mut flux = vec![0.0; n];
             let mut out = vec![0.0; n];
@@ -742,7 +752,8 @@ impl ThermalContact {
                 for (body, solid) in solids.iter_mut().enumerate() {
                     let (own, other) = (body * n, (1 - body) * n);
                     for k in 0..n {
-                        flux[k] = conductance[k] * (x[own + k] - x[other + k])
+                        let g = &response[k];
+                        flux[k] = -(g[3 * body] * x[own + k] + g[body + 1] * x[other + k])
                             + softening[k] * (x[own + k] + x[other + k]);
                     }
                     solid.temperature_rise(&flux, &mut out);
@@ -878,7 +889,13 @@ impl ThermalContact {
     /// The generalized Reynolds factors of every cell against the isothermal Newtonian laws at
     /// the inlet temperature and the pressure `p` (Pa): `flow` = (rho/eta)_e / (rho/eta)(p, T0),
     /// `couette` = rho* / rho(p, T0) (see `crate::ehl::system::ThermalFactors`); 1 on cells
-    /// without material or before the first update.
+    /// without material or before the first update, and upstream of each row's film (the oil
+    /// arrives at T0). Downstream of a row's film (the cavitated outlet, where no temperature
+    /// is solved) the cells take the factors of the row's last solved cell: the oil leaves
+    /// with the state it had there. With 1 there instead the Couette flux jumped by the oil's
+    /// thermal expansion at the film's end, the cavitation boundary moved by a cell, and the
+    /// film's extent flickered between outer iterations (a ball sliding at 2 m/s on a glass
+    /// disc at rest: the factors' residual stuck at 0.1).
     pub fn reynolds_factors(
         &self,
         p: &[f64],
@@ -906,6 +923,23 @@ impl ThermalContact {
                 let c = pr.rho_star_ue / ue / rho;
                 if c.is_finite() && c > 0.0 {
                     couette[k] = c;
+                }
+            }
+        }
+        let nx = self.grid.nx;
+        for j in 0..self.grid.ny {
+            let row = j * nx..(j + 1) * nx;
+            let Some(last) = row
+                .clone()
+                .rev()
+                .find(|&k| active[k] && self.profile(k).is_some())
+            else {
+                continue;
+            };
+            for k in last + 1..row.end {
+                if active[k] {
+                    flow[k] = flow[last];
+                    couette[k] = couette[last];
                 }
             }
         }

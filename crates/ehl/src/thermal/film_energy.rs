@@ -269,6 +269,12 @@ pub struct LineCoefficients {
     pub density: Vec<f64>,
     /// d(h rho)/dt (kg/(m^2 s)) of a transient line (zero when steady)
     pub mass_storage: Vec<f64>,
+    /// beta S (W/(m^3 K)), beta = -d ln eta / dT of the low-shear law at the point (1/K, zero
+    /// where the viscosity does not fall with T): how fast the shear heating falls as the
+    /// point warms, for the linear solve's source linearisation (see [`solve_line_linear`])
+    pub heating_slope: Vec<f64>,
+    /// the temperature the coefficients were taken at (K)
+    pub temperature: Vec<f64>,
 }
 
 /// Energy accounting of a line for a temperature field and the coefficients it was solved
@@ -352,6 +358,9 @@ pub struct LineOptions {
     pub shear: ShearOptions,
     /// include the shear heating (false: only compression heats)
     pub shear_heating: bool,
+    /// keep the heating's fall with temperature implicit in each linear solve
+    /// ([`LineCoefficients::heating_slope`]); false: the plain iteration, for comparison
+    pub linearise_heating: bool,
 }
 
 impl Default for LineOptions {
@@ -363,6 +372,7 @@ impl Default for LineOptions {
             anderson: 0,
             shear: ShearOptions::default(),
             shear_heating: true,
+            linearise_heating: true,
         }
     }
 }
@@ -378,6 +388,8 @@ pub struct LineSolution {
     pub coefficients: LineCoefficients,
     /// the energy accounting of `t` with `coefficients` (see [`LineEnergy`])
     pub energy: LineEnergy,
+    /// how each cell's wall fluxes answer its own surface temperatures ([`wall_response`])
+    pub wall_response: Vec<[f64; 4]>,
     /// fixed-point iterations done
     pub iterations: usize,
     /// the largest temperature change of the last iteration (K)
@@ -438,6 +450,8 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
         compression: vec![0.0; nx * nz],
         density: vec![0.0; nx * nz],
         mass_storage: vec![0.0; nx * nz],
+        heating_slope: vec![0.0; nx * nz],
+        temperature: t.to_vec(),
     };
     if thinning.len() != nx * nz {
         return Err(FilmError::Input(format!(
@@ -566,6 +580,13 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
             };
             c.compression[at] = drho[k] / rho[k] * (f.u[k] * col.dpdx + f.v[k] * col.dpdy);
             c.density[at] = rho[k];
+            if opts.linearise_heating && c.heating[at] > 0.0 {
+                // beta by a forward difference over 1 K of the law
+                let beta = (eta[k] / laws.viscosity(p, ti[k] + 1.0)).ln();
+                if beta.is_finite() && beta > 0.0 {
+                    c.heating_slope[at] = beta * c.heating[at];
+                }
+            }
             if let Some(tr) = &line.transient {
                 let old = tr.rho_h_old[at];
                 if old.is_finite() {
@@ -735,13 +756,18 @@ pub fn solve_line_linear(
                 }
             }
             let comp = h * coef.compression[at];
-            a.add(r, r, comp);
+            a.add(r, r, own_coefficient(line, coef, cp, at, h));
             b[r] += h * coef.heating[at] - comp * t_in;
+            // the heating linearised about the temperature it was taken at (Patankar 1980,
+            // sec. 4.2-5: S(T) ~ S(T*) - beta S (T - T*), a source that falls as the point
+            // warms kept implicit): the fixed point is the same, but an iterate no longer
+            // overshoots where the heating is large and steep in T
+            let slope = h * coef.heating_slope[at];
+            a.add(r, r, slope);
+            b[r] += slope * (coef.temperature[at] - t_in);
             if let Some(sf) = &line.side {
                 // c [m_n^- (T_N - T) + m_s^+ (T - T_S)] / dy, the neighbours lagged
-                let (leave, rest) = sf.upwind(at, t_in);
-                a.add(r, r, cp * leave);
-                b[r] -= cp * rest;
+                b[r] -= cp * sf.upwind(at, t_in).1;
             }
             if let Some(tr) = line
                 .transient
@@ -750,7 +776,6 @@ pub fn solve_line_linear(
             {
                 // h rho c (T - T_old) / dt, in theta = T - T_in
                 let s = h * coef.density[at] * cp * tr.inv_dt;
-                a.add(r, r, s);
                 b[r] += s * (tr.t_old[at] - t_in);
             }
         }
@@ -771,6 +796,121 @@ pub fn solve_line_linear(
         return Err(FilmError::Singular);
     }
     Ok(t)
+}
+
+/// The coefficient of a point's own temperature in its equation besides the x-convection and
+/// the across-film terms (W/(m^2 K)): the compression h a, the side flow's upwind c m_y / dy
+/// of the flow leaving the line, and a transient step's storage h rho c / dt.
+fn own_coefficient(line: &Line, coef: &LineCoefficients, cp: f64, at: usize, h: f64) -> f64 {
+    let mut own = h * coef.compression[at];
+    if let Some(sf) = &line.side {
+        own += cp * sf.upwind(at, line.t_in).0;
+    }
+    if let Some(tr) = line
+        .transient
+        .as_ref()
+        .filter(|tr| tr.t_old[at].is_finite())
+    {
+        own += h * coef.density[at] * cp * tr.inv_dt;
+    }
+    own
+}
+
+/// How each cell's consistent wall fluxes answer its own surface temperatures, with
+/// everything else held: the temperatures of the neighbouring columns (upstream and
+/// downstream along x, the side flow's), the coefficients (laws, velocities, heating).
+/// Per cell `[dq1/dT1, dq1/dT2, dq2/dT1, dq2/dT2]` (W/(m^2 K)), q_b the flux into body b
+/// ([`LineEnergy`]'s `q1`, `q2`), from the column's own block of the linear system: raising
+/// T_b by 1 K moves the interior points by -A_ii^-1 c_b (c_b their coupling to that surface),
+/// and the fluxes by the gradient and the wall-point residual of that change.
+///
+/// A film that only conducts gives -k/h and +k/h (a linear profile: raising T1 lowers q1 and
+/// raises q2 by k/h). A film that also carries oil in from upstream at another temperature
+/// answers more strongly: its thermal layer at the surface is thinner than h (the oil entering
+/// the cell is held), so -dq_b/dT_b exceeds k/h, up to the conductance of the first collocation
+/// interval. The film-body update of the surfaces ([`super::contact::ThermalContact`]) uses
+/// it in place of k/h: at a glass disc at rest under a ball sliding at 2 m/s, k/h
+/// underestimated the inlet's answer several times over and the surface temperatures
+/// oscillated, growing, to the viscosity law's pole.
+pub fn wall_response(
+    rule: &Lobatto,
+    oil: &OilThermal,
+    line: &Line,
+    coef: &LineCoefficients,
+) -> Vec<[f64; 4]> {
+    let nz = rule.len();
+    let nx = line.nx();
+    let ni = nz - 2;
+    let inv_dx = 1.0 / line.dx;
+    let cp = oil.heat_capacity;
+    let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &sinks(line, coef));
+    let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+    let w = &rule.weights;
+    (0..nx)
+        .map(|i| {
+            let h = line.h[i];
+            let kf = oil.conductivity_at(line.p[i]);
+            let kc = cell_conductivity(rule, kf, cp, h, h_min, &jflux[i * nz..(i + 1) * nz]);
+            // the across-film operator at point k applied to point l
+            let across = |k: usize, l: usize| {
+                cp * jflux[i * nz + k] * rule.d1[k * nz + l] - kc / h * rule.d2[k * nz + l]
+            };
+            // the x-convection's own coefficient at point k: from the left face where the
+            // flow enters the cell, the right where it leaves backwards; `ends` counts the
+            // faces at the line's ends, which a surface point treats as its own temperature
+            let convection = |k: usize, ends: bool| {
+                if !(inv_dx > 0.0) {
+                    return 0.0;
+                }
+                let left = if i > 0 || ends {
+                    mf[i * nz + k].max(0.0)
+                } else {
+                    0.0
+                };
+                let right = if i + 1 < nx || ends {
+                    mf[(i + 1) * nz + k].min(0.0)
+                } else {
+                    0.0
+                };
+                cp * inv_dx * (left - right)
+            };
+            let mut a = vec![0.0; ni * ni];
+            for k in 1..nz - 1 {
+                for l in 1..nz - 1 {
+                    a[(k - 1) * ni + l - 1] = across(k, l);
+                }
+                a[(k - 1) * ni + k - 1] +=
+                    convection(k, true) + own_coefficient(line, coef, cp, i * nz + k, h);
+            }
+            let conduction = [-kf / h, kf / h, kf / h, -kf / h];
+            let Some(lu) = crate::linalg::dense::SmallLu::factor(a, ni) else {
+                return conduction;
+            };
+            let mut out = [0.0; 4];
+            for (b, wall) in [0, nz - 1].into_iter().enumerate() {
+                let mut col = vec![0.0; nz];
+                col[wall] = 1.0;
+                let mut x: Vec<f64> = (1..nz - 1).map(|k| -across(k, wall)).collect();
+                lu.solve(&mut x);
+                col[1..nz - 1].copy_from_slice(&x);
+                for (f, end) in [0, nz - 1].into_iter().enumerate() {
+                    // the change of the wall point's residual, then of the consistent flux
+                    let at = i * nz + end;
+                    let r = (0..nz).map(|l| across(end, l) * col[l]).sum::<f64>()
+                        + (convection(end, false) + own_coefficient(line, coef, cp, at, h))
+                            * col[end];
+                    let grad: f64 = (0..nz).map(|l| rule.d1[end * nz + l] * col[l]).sum();
+                    let sign = if f == 0 { 1.0 } else { -1.0 };
+                    out[2 * f + b] = sign * kc / h * grad - w[end] * r;
+                }
+            }
+            if out.iter().all(|v| v.is_finite()) {
+                out
+            } else {
+                conduction
+            }
+        })
+        .collect()
 }
 
 /// The energy accounting ([`LineEnergy`]) of the temperature `t` (K, nx * nz) with the
@@ -1001,16 +1141,52 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
         }
         None => vec![f64::NAN; nx * nz],
     };
+    // the heating's linearisation (`LineOptions::linearise_heating`) is switched on once the
+    // plain iteration shows it is needed: a step that changes the viscosity at the inlet
+    // state by more than a factor e (beta_in * change > 1; the step is then taken again,
+    // linearised), a change that grows, or laws that fail at an iterate (taken again from
+    // the one before). Always on, it slowed the lines of the thermal map (up to 3x the outer
+    // iterations at L = 3.2), whose plain iteration contracts: the local heating rises with
+    // the local temperature at a given stress, and -beta S is the column's answer to a
+    // uniform warming, not a point's.
+    let mut linearise = false;
+    let mut before = t.clone();
+    let beta_in = {
+        let ln_eta = |dt: f64| laws.viscosity(0.0, line.t_in + dt).ln();
+        let b = ln_eta(-0.5) - ln_eta(0.5);
+        if b.is_finite() && b > 0.0 {
+            b
+        } else {
+            0.0
+        }
+    };
     loop {
         iterations += 1;
+        let mut o = *opts;
+        o.linearise_heating = linearise;
         let (coef, profiles, shear_unconverged) =
-            line_coefficients_from(rule, laws, line, &t, opts, &mut thinning)?;
+            match line_coefficients_from(rule, laws, line, &t, &o, &mut thinning) {
+                Ok(c) => c,
+                Err(FilmError::Law { .. })
+                    if opts.linearise_heating && !linearise && iterations > 1 =>
+                {
+                    linearise = true;
+                    t.copy_from_slice(&before);
+                    mixing.clear();
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
         let solved = solve_line_linear(rule, oil, line, &coef)?;
         let change = solved
             .iter()
             .zip(&t)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         let converged = change <= opts.tol;
+        if opts.linearise_heating && !linearise && beta_in * change > 1.0 {
+            linearise = true;
+            continue;
+        }
         if converged || iterations >= opts.max_iter {
             // the residual of the map the iteration runs, the floor included (a point held at
             // the floor by a solve below it has settled there)
@@ -1021,6 +1197,7 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
                 })
                 .collect();
             let energy = line_energy(rule, oil, line, &coef, &solved);
+            let wall_response = wall_response(rule, oil, line, &coef);
             // the floor on what a caller restarts from, too
             let solved: Vec<f64> = solved.iter().map(|v| v.max(floor)).collect();
             return Ok(LineSolution {
@@ -1028,6 +1205,7 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
                 profiles,
                 coefficients: coef,
                 energy,
+                wall_response,
                 iterations,
                 change,
                 cell_change,
@@ -1039,7 +1217,9 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
         if change > last {
             omega = (0.5 * omega).max(0.25 * opts.relaxation);
             mixing.clear();
+            linearise = opts.linearise_heating;
         }
+        before.copy_from_slice(&t);
         last = change;
         let f: Vec<f64> = solved.iter().zip(&t).map(|(a, b)| a - b).collect();
         let next = mixing.next(&t, &f, omega);
@@ -1768,5 +1948,172 @@ mod tests {
                 assert_eq!(*t, T0);
             }
         }
+    }
+
+    /// A film that only conducts (one column, no x-flow, no heating) answers its surfaces as
+    /// a linear profile does: dq1/dT1 = dq2/dT2 = -k/h and dq1/dT2 = dq2/dT1 = +k/h, exactly
+    /// (the collocation holds a linear profile to rounding: 1e-12 relative).
+    #[test]
+    fn a_conducting_film_answers_its_surfaces_by_k_over_h() {
+        let laws = ExpLaw {
+            eta0: 0.05,
+            beta: 0.03,
+            t0: T0,
+            rho0: 870.0,
+            d: 0.0,
+        };
+        for nz in [5usize, 7, 11] {
+            let rule = Lobatto::new(nz);
+            let (h, p, t2) = ([2e-6], [0.0], [T0 + 20.0]);
+            let line = column(&h, &p, 0.0, &t2);
+            let t: Vec<f64> = (0..nz).map(|k| T0 + 20.0 * rule.points[k]).collect();
+            let (coef, _, _) =
+                line_coefficients(&rule, &laws, &line, &t, &LineOptions::default()).unwrap();
+            let g = wall_response(&rule, &OIL, &line, &coef)[0];
+            let c = OIL.conductivity / h[0];
+            for (got, want) in g.iter().zip([-c, c, c, -c]) {
+                assert!(
+                    (got - want).abs() < 1e-12 * c,
+                    "nz {nz}: {g:?} against -+{c}"
+                );
+            }
+        }
+    }
+
+    /// The response of a cell's wall fluxes to its own surface temperatures is what the whole
+    /// line's linear solve gives when only that surface temperature moves: on a line where
+    /// the oil flows downstream everywhere (both surfaces moving along +x, no pressure
+    /// gradient, a converging film so that J is not zero) a cell depends on its upstream
+    /// neighbours only, so raising T_b of cell i by 1 K changes cell i's fluxes by exactly
+    /// `wall_response` (the solve is linear: 1e-8 of k/h, the banded solve's rounding). And
+    /// because the oil entering the cell is held, each surface's own answer is stronger than
+    /// the conduction's k/h.
+    #[test]
+    fn the_wall_response_is_the_cells_own_answer_in_the_line_solve() {
+        let laws = ExpLaw {
+            eta0: 0.05,
+            beta: 0.03,
+            t0: T0,
+            rho0: 870.0,
+            d: 6.5e-4,
+        };
+        let rule = Lobatto::new(7);
+        let nx = 24;
+        let h: Vec<f64> = (0..nx).map(|i| 4e-6 - 1e-7 * i as f64).collect();
+        let zeros = vec![0.0; nx];
+        let walls = vec![T0; nx];
+        let line = prescribed(2e-5, &h, &zeros, &zeros, &walls, 3.0, 1.0);
+        let opts = LineOptions {
+            shear_heating: false,
+            ..Default::default()
+        };
+        let t = vec![T0 + 5.0; nx * rule.len()];
+        let (coef, _, _) = line_coefficients(&rule, &laws, &line, &t, &opts).unwrap();
+        let base_t = solve_line_linear(&rule, &OIL, &line, &coef).unwrap();
+        let base = line_energy(&rule, &OIL, &line, &coef, &base_t);
+        let g = wall_response(&rule, &OIL, &line, &coef);
+        for i in [0, 5, 23] {
+            let c = OIL.conductivity / h[i];
+            for b in 0..2 {
+                let mut moved = walls.clone();
+                moved[i] += 1.0;
+                let mut l = line;
+                if b == 0 {
+                    l.t1 = &moved;
+                } else {
+                    l.t2 = &moved;
+                }
+                let t = solve_line_linear(&rule, &OIL, &l, &coef).unwrap();
+                let e = line_energy(&rule, &OIL, &l, &coef, &t);
+                let dq = [e.q1[i] - base.q1[i], e.q2[i] - base.q2[i]];
+                for f in 0..2 {
+                    let want = dq[f];
+                    let got = g[i][2 * f + b];
+                    assert!(
+                        (got - want).abs() < 1e-8 * c,
+                        "cell {i}, dq{}/dT{}: {got} against the solve's {want}",
+                        f + 1,
+                        b + 1
+                    );
+                }
+            }
+            assert!(
+                -g[i][0] > c && -g[i][3] > c,
+                "cell {i}: {:?}, k/h {c}",
+                g[i]
+            );
+        }
+    }
+
+    /// The heating linearised in the linear solve (`LineCoefficients::heating_slope`) leaves
+    /// the fixed point where it was, and steadies a stiff film. A Couette line (surfaces at 4
+    /// and 1 m/s, 1 um film) of an oil whose viscosity falls by 5 % a kelvin:
+    /// * at eta0 = 2 Pa s (a 12 K rise) the iteration linearised at every step (the loop run
+    ///   here by hand) ends where `solve_line`'s plain one does (each to its 1e-9 K; 1e-6 K
+    ///   allowed);
+    /// * at eta0 = 50 Pa s (a 63 K rise) the plain iteration's first step overshoots by
+    ///   hundreds of kelvin; with the linearisation switched on when needed (`solve_line`'s
+    ///   default) it converges in fewer iterations than without (measured 55 and 82), to the
+    ///   same temperatures (1e-6 K).
+    #[test]
+    fn the_linearised_heating_keeps_the_fixed_point_and_steadies_a_stiff_film() {
+        let rule = Lobatto::new(7);
+        let nx = 16;
+        let h = vec![1e-6; nx];
+        let zeros = vec![0.0; nx];
+        let walls = vec![T0; nx];
+        let line = prescribed(2e-5, &h, &zeros, &zeros, &walls, 4.0, 1.0);
+        let laws = |eta0: f64| ExpLaw {
+            eta0,
+            beta: 0.05,
+            t0: T0,
+            rho0: 870.0,
+            d: 0.0,
+        };
+        let opts = |linearise_heating: bool| LineOptions {
+            tol: 1e-9,
+            linearise_heating,
+            ..Default::default()
+        };
+        let apart = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        };
+        let plain = solve_line(&rule, &laws(2.0), &OIL, &line, None, &opts(false)).unwrap();
+        assert!(plain.converged);
+        let rise = plain.t.iter().fold(0.0f64, |m, v| m.max(v - T0));
+        assert!(rise > 10.0, "the heating must matter: {rise} K");
+        let mut t = vec![T0; nx * rule.len()];
+        let mut done = false;
+        for _ in 0..200 {
+            let (coef, _, _) =
+                line_coefficients(&rule, &laws(2.0), &line, &t, &opts(true)).unwrap();
+            assert!(coef.heating_slope.iter().any(|&v| v > 0.0));
+            let next = solve_line_linear(&rule, &OIL, &line, &coef).unwrap();
+            let change = apart(&next, &t);
+            t.iter_mut()
+                .zip(&next)
+                .for_each(|(a, b)| *a += 0.7 * (b - *a));
+            if change <= 1e-9 {
+                done = true;
+                break;
+            }
+        }
+        let diff = apart(&t, &plain.t);
+        assert!(
+            done && diff < 1e-6,
+            "linearised throughout: {diff} K from the plain fixed point"
+        );
+        let stiff = solve_line(&rule, &laws(50.0), &OIL, &line, None, &opts(true)).unwrap();
+        let stiff_plain = solve_line(&rule, &laws(50.0), &OIL, &line, None, &opts(false)).unwrap();
+        let rise = stiff.t.iter().fold(0.0f64, |m, v| m.max(v - T0));
+        eprintln!(
+            "eta0 50: rise {rise:.1} K, {} iterations with the linearisation, {} plain",
+            stiff.iterations, stiff_plain.iterations
+        );
+        assert!(stiff.converged && stiff_plain.converged && rise > 30.0);
+        assert!(stiff.iterations < stiff_plain.iterations);
+        assert!(apart(&stiff.t, &stiff_plain.t) < 1e-6);
     }
 }
