@@ -18,8 +18,8 @@
 //! * the time steps of a transient infinite line contact (ny == 1) are preconditioned instead
 //!   by the exact Jacobian held as a hierarchical (HODLR) approximate inverse, factored once
 //!   and kept over Newton steps and time steps until the GMRES iterations it costs outweigh a
-//!   new factorisation (see `dense_solve`, `system::DensePreconditioner`); their linear solves
-//!   then go to 1e-3 of
+//!   new factorisation (see `line_jacobian_solve`, `system::LineJacobianPreconditioner`);
+//!   their linear solves then go to 1e-3 of
 //!   what the tolerance asks, so that one Newton step usually ends the time step;
 //! * grid sequencing: every solve starts on grids 2, 4, ... times coarser (from the given start
 //!   averaged onto them), each level's solution interpolated as the next level's start;
@@ -41,7 +41,7 @@ use crate::linalg::gmres::{gmres, norm, GmresOutcome, GmresWork};
 use crate::reference::film;
 use crate::reynolds::residual;
 use system::{
-    jacobian_product, DensePreconditioner, Linear, Physics, Preconditioner, State, System,
+    jacobian_product, LineJacobianPreconditioner, Linear, Physics, Preconditioner, State, System,
 };
 pub use transient::{
     solve_transient, solve_transient_thermal, MassBalance, MovingSurface, StepResult, StepThermal,
@@ -420,10 +420,10 @@ impl NewtonRun {
             best: None,
             prev_merit: None,
             merit: 0.0,
-            // with the dense preconditioner of a transient line (started from the predicted
-            // state, in Newton's region of fast convergence) the first step is solved as
+            // with the whole-Jacobian preconditioner of a transient line (started from the
+            // predicted state, in Newton's region of fast convergence) the first step is solved as
             // tightly as the tolerance asks (the floor in `evaluate`), not to ETA_MAX
-            eta: if sys.dense_reuse { 0.0 } else { ETA_MAX },
+            eta: if sys.jacobian_reuse { 0.0 } else { ETA_MAX },
             dtau: dtau0,
             shift: 0.0,
             full_step: false,
@@ -487,13 +487,13 @@ impl NewtonRun {
         self.prev_merit = Some(merit);
         // no need to solve far below what the tolerance asks: near the end a reduction of
         // the residual by tol / score (with a safety factor 10) is enough (Kelley 1995,
-        // Iterative Methods for Linear and Nonlinear Equations, sec. 6.3). With the dense
+        // Iterative Methods for Linear and Nonlinear Equations, sec. 6.3). With the whole-Jacobian
         // preconditioner, where one more digit costs about one GMRES iteration and one more
         // Newton step at least two, the factor is 1000: the relative residual (F unscaled)
         // falls some 30 times less than the scaled merit the GMRES tolerance is measured in
         // (transient line, 2048 cells: 4.8e-6 -> 2.9e-8 for a linear reduction of 2e-4),
         // so with 10 the step fell short of 1e-8 and a second Newton step was needed
-        let safety = if sys.dense_reuse { 1e-3 } else { 0.1 };
+        let safety = if sys.jacobian_reuse { 1e-3 } else { 0.1 };
         self.eta = self.eta.max((safety * tol / score).min(ETA_MAX));
         // exact H0 column
         sys.directional(st, &self.e_h0, &mut self.lin, &mut self.bcol);
@@ -507,8 +507,8 @@ impl NewtonRun {
         None
     }
 
-    /// The Newton direction `u`: J u = -R by preconditioned GMRES (the dense preconditioner
-    /// of a transient line when it applies, else the line / multigrid one), with the
+    /// The Newton direction `u`: J u = -R by preconditioned GMRES (the whole-Jacobian
+    /// preconditioner of a transient line when it applies, else the line / multigrid one), with the
     /// pseudo-time shift on the Reynolds rows.
     fn direction(
         &mut self,
@@ -524,8 +524,8 @@ impl NewtonRun {
         };
         let shift = self.shift;
         let rhs: Vec<f64> = self.r.iter().map(|v| -v).collect();
-        let dense = if sys.dense_reuse && shift == 0.0 {
-            dense_solve(
+        let dense = if sys.jacobian_reuse && shift == 0.0 {
+            line_jacobian_solve(
                 sys,
                 st,
                 &self.c,
@@ -665,11 +665,11 @@ impl NewtonRun {
     }
 }
 
-/// Most GMRES iterations a lagged dense preconditioner may take before it is refactored at
+/// Most GMRES iterations a lagged whole-Jacobian preconditioner may take before it is refactored at
 /// the current state and the solve is repeated.
 const DENSE_STALE_MAX: usize = 20;
 
-/// A lagged dense preconditioner is refactored before the next Newton step once the GMRES
+/// A lagged whole-Jacobian preconditioner is refactored before the next Newton step once the GMRES
 /// iterations it has cost beyond two per solve (what fresh dense LU factors took) add up to
 /// more than this: the rent-or-buy rule, with the price of a factorisation in GMRES iterations. With
 /// dense LU factors (1025 unknowns 35 ms against 0.36 ms per solve, 2049 260 ms against 2.5
@@ -681,13 +681,13 @@ const DENSE_STALE_MAX: usize = 20;
 const DENSE_REFRESH: usize = 200;
 
 /// One Newton step's linear solve J u = rhs preconditioned by the exact Jacobian kept in
-/// `sys` (see [`system::DensePreconditioner`]): the kept factors are used as long as they
+/// `sys` (see [`system::LineJacobianPreconditioner`]): the kept factors are used as long as they
 /// serve (at most [`DENSE_STALE_MAX`] iterations to reach `eta`), else refactored here and the
 /// solve repeated; they are marked for a refresh at the next step by the budget
 /// [`DENSE_REFRESH`]. None if the matrix could not be factored (the caller falls back to the
 /// banded preconditioner). The GMRES iterations of a discarded attempt are counted in `stats`.
 #[allow(clippy::too_many_arguments)]
-fn dense_solve(
+fn line_jacobian_solve(
     sys: &mut System,
     st: &State,
     c: &[f64],
@@ -701,19 +701,19 @@ fn dense_solve(
     work: &mut GmresWork,
     stats: &mut Stats,
 ) -> Option<GmresOutcome> {
-    let mut kept = if sys.dense_stale {
+    let mut kept = if sys.jacobian_stale {
         None
     } else {
-        sys.dense_pc.take()
+        sys.line_jacobian_pc.take()
     };
-    sys.dense_pc = None;
+    sys.line_jacobian_pc = None;
     loop {
         let fresh = kept.is_none();
         let pc = match kept.take() {
             Some(pc) => pc,
             None => {
                 sys.dense_builds += 1;
-                DensePreconditioner::new(sys, st, c, set, bcol, 0.0, true)?
+                LineJacobianPreconditioner::new(sys, st, c, set, bcol, 0.0, true)?
             }
         };
         let max = if fresh {
@@ -738,12 +738,12 @@ fn dense_solve(
             continue;
         }
         if fresh {
-            sys.dense_extra = 0;
+            sys.jacobian_extra = 0;
         } else {
-            sys.dense_extra += out.iterations.saturating_sub(2);
+            sys.jacobian_extra += out.iterations.saturating_sub(2);
         }
-        sys.dense_stale = sys.dense_extra > DENSE_REFRESH;
-        sys.dense_pc = Some(pc);
+        sys.jacobian_stale = sys.jacobian_extra > DENSE_REFRESH;
+        sys.line_jacobian_pc = Some(pc);
         return Some(out);
     }
 }

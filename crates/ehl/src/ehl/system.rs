@@ -235,15 +235,16 @@ pub(crate) struct System {
     pub applies: usize,
     /// the squeeze term of a time step (None: steady)
     pub squeeze: Option<Squeeze>,
-    /// precondition the plain Newton steps (no pseudo-transient shift) by a dense LU of the
-    /// exact Jacobian, kept over Newton steps and calls (a transient line contact, see
-    /// [`DensePreconditioner`]); false: the banded line preconditioner every step
-    pub dense_reuse: bool,
-    /// the kept dense preconditioner, whether it is due for a refresh, and the GMRES
-    /// iterations it has cost beyond a fresh one's since it was factored
-    pub dense_pc: Option<DensePreconditioner>,
-    pub dense_stale: bool,
-    pub dense_extra: usize,
+    /// precondition the plain Newton steps (no pseudo-transient shift) by the line's whole
+    /// Jacobian, factored (HODLR, or dense LU) and kept over Newton steps and calls (a
+    /// transient line contact, see [`LineJacobianPreconditioner`]); false: the banded line
+    /// preconditioner every step
+    pub jacobian_reuse: bool,
+    /// the kept whole-Jacobian preconditioner, whether it is due for a refresh, and the
+    /// GMRES iterations it has cost beyond a fresh one's since it was factored
+    pub line_jacobian_pc: Option<LineJacobianPreconditioner>,
+    pub jacobian_stale: bool,
+    pub jacobian_extra: usize,
     /// dense factorisations so far
     pub dense_builds: usize,
     /// thermal runs: the film's temperature as frozen per-cell factors (see [`ThermalFactors`])
@@ -343,10 +344,10 @@ impl System {
             n_mat,
             applies: 0,
             squeeze: None,
-            dense_reuse: false,
-            dense_pc: None,
-            dense_stale: false,
-            dense_extra: 0,
+            jacobian_reuse: false,
+            line_jacobian_pc: None,
+            jacobian_stale: false,
+            jacobian_extra: 0,
             dense_builds: 0,
             thermal: None,
             couette_shift: None,
@@ -854,7 +855,7 @@ impl LineSink for BandSink<'_> {
 }
 
 /// The whole line's Jacobian J_P, row-major n x n (the dense preconditioner of an infinite
-/// line, [`DensePreconditioner`]).
+/// line, [`LineJacobianPreconditioner`]).
 struct DenseSink<'a> {
     a: &'a mut [f64],
     n: usize,
@@ -1052,7 +1053,7 @@ impl Preconditioner {
     }
 }
 
-/// Leaf size and tolerance of the HODLR form of J_P (see [`DensePreconditioner`]). The
+/// Leaf size and tolerance of the HODLR form of J_P (see [`LineJacobianPreconditioner`]). The
 /// tolerance is on the row-equilibrated matrix; 1e-6 costs about as many GMRES iterations per
 /// Newton step as exact factors do (waviness line of 2048 cells, 300 steps, refresh budget
 /// 100: 5.7 per step against 5.6 with the single-precision dense LU; 1e-8: 5.5, 1e-4: 6.6), at
@@ -1077,14 +1078,14 @@ const HODLR_TOLERANCE: f64 = 1e-6;
 /// steps and used as the preconditioner of later, nearby Jacobians (a Newton-Krylov method
 /// with a lagged preconditioner, Knoll & Keyes 2004, sec. 3.1.2), refreshed when GMRES needs
 /// more iterations (see `ehl::newton`).
-pub(crate) struct DensePreconditioner {
-    form: DenseForm,
+pub(crate) struct LineJacobianPreconditioner {
+    form: JacobianForm,
 }
 
 /// How the bordered Jacobian is held: J_P as a HODLR approximate inverse with the border by its
 /// Schur complement, or (if a HODLR leaf or coupling system is singular) the whole bordered
 /// matrix as dense LU factors.
-enum DenseForm {
+enum JacobianForm {
     Hodlr {
         jp: Hodlr,
         /// J_P^-1 dR/dH0
@@ -1097,7 +1098,7 @@ enum DenseForm {
     Lu(DenseLu),
 }
 
-impl DensePreconditioner {
+impl LineJacobianPreconditioner {
     /// Assemble at the state `st` (scaling `c`, active set `set`, `bcol` = dR/dH0, `shift` on
     /// the Reynolds rows) and factor: in HODLR form if `hodlr` (and it succeeds), else as dense
     /// LU factors. None on a 2D grid or if the matrix is singular.
@@ -1110,7 +1111,7 @@ impl DensePreconditioner {
         bcol: &[f64],
         shift: f64,
         hodlr: bool,
-    ) -> Option<DensePreconditioner> {
+    ) -> Option<LineJacobianPreconditioner> {
         let rg = sys.rg;
         if rg.ny != 1 {
             return None;
@@ -1152,8 +1153,8 @@ impl DensePreconditioner {
             h.solve(&mut zc);
             let schur = dot(&load, &zc);
             if schur != 0.0 && schur.is_finite() {
-                return Some(DensePreconditioner {
-                    form: DenseForm::Hodlr {
+                return Some(LineJacobianPreconditioner {
+                    form: JacobianForm::Hodlr {
                         jp: h,
                         zc,
                         load,
@@ -1165,7 +1166,8 @@ impl DensePreconditioner {
         Self::bordered_lu(&jp, n, bcol, &load)
     }
 
-    /// The bordered matrix as dense LU factors (the fallback of [`DensePreconditioner::new`]).
+    /// The bordered matrix as dense LU factors (the fallback of
+    /// [`LineJacobianPreconditioner::new`]).
     fn bordered_lu(jp: &[f64], n: usize, bcol: &[f64], load: &[f64]) -> Option<Self> {
         let m = n + 1;
         let mut a = vec![0.0; m * m];
@@ -1176,8 +1178,8 @@ impl DensePreconditioner {
             a[k * m + n] = bcol[k];
             a[n * m + k] = load[k];
         }
-        DenseLu::factor(a, m).map(|lu| DensePreconditioner {
-            form: DenseForm::Lu(lu),
+        DenseLu::factor(a, m).map(|lu| LineJacobianPreconditioner {
+            form: JacobianForm::Lu(lu),
         })
     }
 
@@ -1185,8 +1187,8 @@ impl DensePreconditioner {
     pub fn apply(&self, r: &[f64], out: &mut [f64]) {
         out.copy_from_slice(r);
         match &self.form {
-            DenseForm::Lu(lu) => lu.solve(out),
-            DenseForm::Hodlr {
+            JacobianForm::Lu(lu) => lu.solve(out),
+            JacobianForm::Hodlr {
                 jp,
                 zc,
                 load,
@@ -1411,9 +1413,10 @@ mod tests {
             .collect();
         let mut ju = vec![0.0; n + 1];
         jacobian_product(&mut sys, &st, &mut lin, &c, &set, 0.0, &u, &mut ju);
-        let pc = DensePreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, true).expect("factored");
-        assert!(matches!(pc.form, DenseForm::Hodlr { .. }));
-        let dense = match DensePreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, false) {
+        let pc = LineJacobianPreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, true)
+            .expect("factored");
+        assert!(matches!(pc.form, JacobianForm::Hodlr { .. }));
+        let dense = match LineJacobianPreconditioner::new(&sys, &st, &c, &set, &bcol, 0.0, false) {
             Some(d) => d,
             None => panic!("dense LU failed"),
         };

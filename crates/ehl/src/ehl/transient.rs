@@ -37,8 +37,8 @@
 //!   usually enough. If Newton fails from the prediction, the step is solved again from the
 //!   last solution.
 //! * infinite line (ny == 1, up to [`DENSE_MAX`] cells): the exact Jacobian as the
-//!   preconditioner, kept over the steps (see `super::dense_solve`). Measured on 1024 cells:
-//!   22.9 -> ~4 ms per step (Newton 3.0 -> 1.1, GMRES 226 -> ~6 per step) with dense LU
+//!   preconditioner, kept over the steps (see `super::line_jacobian_solve`). Measured on 1024
+//!   cells: 22.9 -> ~4 ms per step (Newton 3.0 -> 1.1, GMRES 226 -> ~6 per step) with dense LU
 //!   factors, 2048 cells: 104 -> ~21 ms; then 1.2 and 3.6 ms with the factors in HODLR form
 //!   (their solves O(n k log n) instead of O(n^2)).
 
@@ -349,7 +349,7 @@ fn run(
         params.newton.wedge_upwind_order != 1,
     );
     let n = grid.len();
-    sys.dense_reuse = grid.ny == 1 && n <= DENSE_MAX;
+    sys.jacobian_reuse = grid.ny == 1 && n <= DENSE_MAX;
     let mut st = State::new(n);
     for k in 0..n {
         st.p[k] = if sys.active[k] {
@@ -446,7 +446,7 @@ fn run(
         // to BDF2 (c0 from 1/dT to 3/(2 dT)) makes them a poor preconditioner (review: 14-16
         // GMRES iterations a step until the budget forced a refactorisation)
         if sys.squeeze_c0() != c0_before {
-            sys.dense_stale = true;
+            sys.jacobian_stale = true;
         }
         if let Some(levels) = transport.as_mut() {
             levels.advance(problem, &sys, t);
