@@ -1308,6 +1308,19 @@ mod tests {
         d: f64,
     }
 
+    impl ExpLaw {
+        /// eta0 (Pa s) falling by beta (1/K), rho0 = 870 kg/m^3 expanding by d (1/K), about T0
+        fn new(eta0: f64, beta: f64, d: f64) -> Self {
+            ExpLaw {
+                eta0,
+                beta,
+                t0: T0,
+                rho0: 870.0,
+                d,
+            }
+        }
+    }
+
     impl FilmLaws for ExpLaw {
         fn viscosity(&self, _: f64, t: f64) -> f64 {
             self.eta0 * (-self.beta * (t - self.t0)).exp()
@@ -1962,13 +1975,7 @@ mod tests {
     /// (the collocation holds a linear profile to rounding: 1e-12 relative).
     #[test]
     fn a_conducting_film_answers_its_surfaces_by_k_over_h() {
-        let laws = ExpLaw {
-            eta0: 0.05,
-            beta: 0.03,
-            t0: T0,
-            rho0: 870.0,
-            d: 0.0,
-        };
+        let laws = ExpLaw::new(0.05, 0.03, 0.0);
         for nz in [5usize, 7, 11] {
             let rule = Lobatto::new(nz);
             let (h, p, t2) = ([2e-6], [0.0], [T0 + 20.0]);
@@ -1997,13 +2004,7 @@ mod tests {
     /// the conduction's k/h.
     #[test]
     fn the_wall_response_is_the_cells_own_answer_in_the_line_solve() {
-        let laws = ExpLaw {
-            eta0: 0.05,
-            beta: 0.03,
-            t0: T0,
-            rho0: 870.0,
-            d: 6.5e-4,
-        };
+        let laws = ExpLaw::new(0.05, 0.03, 6.5e-4);
         let rule = Lobatto::new(7);
         let nx = 24;
         let h: Vec<f64> = (0..nx).map(|i| 4e-6 - 1e-7 * i as f64).collect();
@@ -2071,13 +2072,7 @@ mod tests {
         let zeros = vec![0.0; nx];
         let walls = vec![T0; nx];
         let line = prescribed(2e-5, &h, &zeros, &zeros, &walls, 4.0, 1.0);
-        let laws = |eta0: f64| ExpLaw {
-            eta0,
-            beta: 0.05,
-            t0: T0,
-            rho0: 870.0,
-            d: 0.0,
-        };
+        let laws = |eta0: f64| ExpLaw::new(eta0, 0.05, 0.0);
         let opts = |linearise_heating: bool| LineOptions {
             tol: 1e-9,
             linearise_heating,
@@ -2114,10 +2109,7 @@ mod tests {
             "linearised throughout: {diff} K from the plain fixed point"
         );
         // an oil that expands with temperature (its density turns negative 1540 K above T0)
-        let expanding = |eta0: f64| ExpLaw {
-            d: 6.5e-4,
-            ..laws(eta0)
-        };
+        let expanding = |eta0: f64| ExpLaw::new(eta0, 0.05, 6.5e-4);
         let a = solve_line(&rule, &expanding(50.0), &OIL, &line, None, &opts(true)).unwrap();
         let b = solve_line(&rule, &expanding(50.0), &OIL, &line, None, &opts(false)).unwrap();
         assert!(a.converged && b.converged);
