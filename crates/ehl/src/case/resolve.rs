@@ -2207,6 +2207,23 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let grid = grid(&top, kind, c, b, ky)?;
     let solver = solver(&top, kind)?;
     let infinite = matches!(c, Contact::Line { len, .. } if len.is_infinite());
+    if let (Some(m), Some(_), true) = (&motion, &thermal, infinite) {
+        // an infinite line contact's bodies conduct in 2D, where a line source standing still
+        // on a half-plane heats it without end (the temperature grows as log t); the solver
+        // would stop at the body's temperature, the error naming no key
+        for body in [1, 2] {
+            let (u, formula) = body_speed(m, body);
+            if u == 0.0 {
+                return Err(case_err(
+                    file,
+                    "motion.slide_to_roll",
+                    format!(
+                        "a thermal infinite line contact needs both surfaces moving, but body {body} stands still ({formula} = 0): the heat of a line source at rest on a half-plane has no steady temperature (it grows as log t). Use |slide_to_roll| < 2, or finite rollers (a finite length), whose bodies conduct in 3D"
+                    ),
+                ));
+            }
+        }
+    }
     let features = features(&top, &grid, b, r, infinite, travel.is_some())?;
     let mut span = None;
     if let Some(m) = &motion {

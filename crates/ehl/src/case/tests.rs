@@ -908,6 +908,36 @@ fn features_of_an_infinite_line_contact_are_uniform_along_y() {
     assert_eq!(c.features.len(), 1);
 }
 
+/// A thermal infinite line contact with a body at rest (slide_to_roll = +-2) is refused,
+/// naming `motion.slide_to_roll`: a line source at rest on a half-plane has no steady
+/// temperature. The same SRR is accepted without `[thermal]`, and with it on finite rollers
+/// (3D conduction) and at |SRR| < 2.
+#[test]
+fn a_thermal_line_contact_needs_both_surfaces_moving() {
+    let line = EHL
+        .replace("length = 9.5e-3", "length = inf")
+        .replace("force = 6000.0", "force_per_length = 6e5");
+    for srr in ["2", "-2"] {
+        let set = format!("motion.slide_to_roll={srr}");
+        let (key, msg) = err(&format!("{line}\n[thermal]\n"), &[&set]);
+        assert_eq!(key, "motion.slide_to_roll", "{msg}");
+        assert!(
+            msg.contains("stands still") && msg.contains("log t"),
+            "{msg}"
+        );
+        assert!(parse(&line, &[&set]).is_ok(), "isothermal, SRR {srr}");
+        assert!(
+            parse(&format!("{EHL}\n[thermal]\n"), &[&set]).is_ok(),
+            "finite rollers, SRR {srr}"
+        );
+    }
+    assert!(parse(
+        &format!("{line}\n[thermal]\n"),
+        &["motion.slide_to_roll=1.9"]
+    )
+    .is_ok());
+}
+
 /// `[thermal]`: defaults (steel bodies, S0 = 1.1 giving beta by the thesis relation), the
 /// rheology given at two temperatures is evaluated at the inlet, and bad input names its key.
 #[test]
