@@ -591,11 +591,12 @@ impl System {
             &self.khat[..],
             self.squeeze_c0(),
         );
+        let shift = self.couette_shift.as_deref();
         let row = |j: usize, cj: &mut [f64], mut sj: Option<&mut [f64]>| {
             for (i, ck) in cj.iter_mut().enumerate() {
                 let k = j * nx + i;
                 let (c, s) = if active[k] {
-                    let (pois, wedge) = diagonal(rg, active, khat, c0, st, i, j);
+                    let (pois, wedge) = diagonal(rg, active, khat, c0, st, shift, i, j);
                     let c = 1.0 / (pois + wedge.abs());
                     (c, c * pois)
                 } else {
@@ -695,6 +696,7 @@ fn diagonal(
     khat: &[f64],
     c0: f64,
     st: &State,
+    couette_shift: Option<&[f64]>,
     i: usize,
     j: usize,
 ) -> (f64, f64) {
@@ -710,13 +712,22 @@ fn diagonal(
         pois += residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 }).0;
     }
     let a = flow_stencil(rg, active, c0, i, j);
-    let mut wedge = a[0] * (st.drho[k] * st.h[k] + st.rho[k] * khat[0]);
+    // the squeeze term acts on rho H, the Couette term on rho (H + shift)
+    let couette0 = a[0] - c0;
+    let mut wedge = a[0] * (st.drho[k] * st.h[k] + st.rho[k] * khat[0])
+        + couette0 * st.drho[k] * shift_at(couette_shift, k);
     for (o, &ao) in a.iter().enumerate().skip(1) {
         if i >= o && active[k - o] && o < khat.len() {
             wedge += ao * st.rho[k - o] * khat[o];
         }
     }
     (pois, wedge)
+}
+
+/// The features' Couette shift of cell `k` (film units; 0 without one).
+#[inline]
+fn shift_at(couette_shift: Option<&[f64]>, k: usize) -> f64 {
+    couette_shift.map_or(0.0, |s| s[k])
 }
 
 /// Adds row by row the local linearisation of grid line `j` (the Poiseuille stencil along x with
@@ -732,6 +743,7 @@ fn assemble_line(
     active: &[bool],
     c0: f64,
     st: &State,
+    couette_shift: Option<&[f64]>,
     c: &[f64],
     set: &[bool],
     shift: f64,
@@ -814,7 +826,11 @@ fn assemble_line(
             if !active[km] {
                 continue;
             }
-            out.add(i, im, ck * ao * st.drho[km] * st.h[km]);
+            // the wedge and squeeze terms on rho H (rho' H locally, rho through the film), and
+            // the Couette part of the stencil on the features' shift as well, rho' shift
+            let couette = if o == 0 { ao - c0 } else { ao };
+            let hk = st.h[km] * ao + shift_at(couette_shift, km) * couette;
+            out.add(i, im, ck * st.drho[km] * hk);
             out.add_kernel(i, im, ck * ao * st.rho[km]);
         }
     }
@@ -952,6 +968,7 @@ impl Preconditioner {
         let dy2 = rg.dy * rg.dy;
         let (active, khat) = (&sys.active[..], &sys.khat[..]);
         let c0 = sys.squeeze_c0();
+        let couette_shift = sys.couette_shift.as_deref();
         lines
             .par_iter_mut()
             .with_min_len(min_len(nx))
@@ -962,6 +979,7 @@ impl Preconditioner {
                     active,
                     c0,
                     st,
+                    couette_shift,
                     c,
                     set,
                     shift,
@@ -1127,6 +1145,7 @@ impl LineJacobianPreconditioner {
             &sys.active,
             sys.squeeze_c0(),
             st,
+            sys.couette_shift.as_deref(),
             c,
             set,
             shift,
@@ -1370,6 +1389,19 @@ mod tests {
     /// wrong border is off by order one (measured 0.19 with the H0 correction dropped).
     #[test]
     fn line_preconditioner_inverts_the_jacobian() {
+        check_line_preconditioner(false);
+    }
+
+    /// The same with the features' Couette shift of a time step (rho (H + shift) in the
+    /// Couette term, rho H in the squeeze term): the preconditioner must carry the shift's
+    /// rho' shift as the Jacobian product does. Measured 6.1e-5 (HODLR) and 4.3e-7 (LU); without
+    /// the shift in the assembly the HODLR form was 2.8e-3 off, failing the 1e-3 asked.
+    #[test]
+    fn line_preconditioner_inverts_the_jacobian_with_a_couette_shift() {
+        check_line_preconditioner(true);
+    }
+
+    fn check_line_preconditioner(shifted: bool) {
         let nx = 300;
         let (b, r, e) = (1e-4, 0.01, 2.2e11);
         let grid = Grid::new(nx, 1, -3.0 * b, 1.5 * b, -0.5, 0.5);
@@ -1382,6 +1414,10 @@ mod tests {
             c0: 30.0,
             history: (0..nx).map(|k| 1.0 + (k % 5) as f64 * 0.1).collect(),
         });
+        if shifted {
+            // a shift of the order of the film (H ~ 0.3-1 here), as a feature's edge gives
+            sys.couette_shift = Some((0..nx).map(|k| ((k % 7) as f64 - 3.0) * 0.2).collect());
+        }
         let mut st = State::new(nx);
         for i in 0..nx {
             let x = grid.x(i) / b;
@@ -1430,6 +1466,7 @@ mod tests {
                 .map(|(a, b)| (a - b) * (a - b))
                 .sum::<f64>()
                 .sqrt();
+            eprintln!("{name}, shifted {shifted}: relative error {:.1e}", err / norm);
             assert!(err < 1e-3 * norm, "{name}: relative error {}", err / norm);
         }
     }
