@@ -893,6 +893,33 @@ fn swapping_the_surface_speeds_mirrors_the_thermal_solution() {
     }
 }
 
+/// A converged thermal solution whose energy balance stays open by more than the 1 % issue 13
+/// asks (the discretisation's doing on a coarse grid) says so in the summary's warnings: the
+/// glass-disc ball at 3 m/s with the disc at rest closes to 2.0 % on 32^2 cells (warned) and
+/// to 0.8 % on 64^2 (not warned).
+#[test]
+fn an_open_energy_balance_is_warned() {
+    let text = include_str!("../../../examples/ehl_thermal_ball.toml");
+    for (n, warned) in [(32, true), (64, false)] {
+        let sets = vec![
+            format!("grid.nx={n}"),
+            format!("grid.ny={n}"),
+            "motion.entrainment_speed=3".to_string(),
+            "motion.slide_to_roll=2".to_string(),
+        ];
+        let s = solve(&parse_str(text, "ehl_thermal_ball.toml", &sets).unwrap()).summary;
+        assert!(s.converged, "{n}^2: {}", s.termination);
+        let err = s.energy_balance_error.unwrap().abs();
+        let said = s.warnings.iter().any(|w| w.contains("energy balance"));
+        assert_eq!(err > 0.01, warned, "{n}^2: balance {err}");
+        assert_eq!(
+            said, warned,
+            "{n}^2: balance {err}, warnings {:?}",
+            s.warnings
+        );
+    }
+}
+
 /// `temperature.png` of a 2D grid carries the three maps (film, surface 1, surface 2) below
 /// the centre-line panels; a line contact has the panels only. Checked by the PNG's size and
 /// that each is a real picture (well above an empty frame's bytes). The ball at 32^2 and the

@@ -515,7 +515,14 @@ pub(super) fn solve(
                 top(|t| t.max_surface_temperature_1_k),
                 top(|t| t.max_surface_temperature_2_k),
             ]);
-            summary.max_energy_balance_error = Some(top(|t| t.energy_balance_error.abs()));
+            let worst = top(|t| t.energy_balance_error.abs());
+            summary.max_energy_balance_error = Some(worst);
+            summary
+                .warnings
+                .extend(crate::run::thermal::energy_balance_warning(
+                    worst,
+                    "of the worst time step",
+                ));
         }
         temperature = Some(fields);
     }
