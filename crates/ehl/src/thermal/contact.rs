@@ -110,9 +110,9 @@ pub const RESIDUAL_FILM_RATIO: f64 = 10.0;
 pub const CONVERGED_FILM_RATIO: f64 = 5.0;
 
 /// The linear solve of [`ThermalContact::update_surfaces`]: relative residual, Krylov
-/// dimension before a restart and most iterations. The linearisation is itself approximate (the
-/// film's conduction only), so a loose tolerance suffices: the next film-body iteration corrects
-/// the rest.
+/// dimension before a restart and most iterations. The linearisation is itself approximate
+/// (each film column's own answer and the heating's slope only), so a loose tolerance
+/// suffices: the next film-body iteration corrects the rest.
 const SURFACE_GMRES_RTOL: f64 = 1e-3;
 const SURFACE_GMRES_RESTART: usize = 30;
 const SURFACE_GMRES_MAX_ITER: usize = 90;
@@ -611,11 +611,8 @@ impl ThermalContact {
                         continue;
                     }
                     let tm = self.rule.interpolate(&s.t[i * nz..(i + 1) * nz], 0.5);
-                    let ln_eta = |t: f64| self.laws.viscosity(pp[k], t).ln();
-                    let beta = ln_eta(tm - 0.5) - ln_eta(tm + 0.5);
-                    if beta.is_finite() && beta > 0.0 {
-                        softening[k] = 0.25 * beta * gen;
-                    }
+                    let beta = self.laws.viscosity_temperature_coefficient(pp[k], tm);
+                    softening[k] = 0.25 * beta * gen;
                 }
             }
             let change = self.update_surfaces(&q, &response, &softening, &mut rise);

@@ -82,6 +82,19 @@ pub trait FilmLaws: Sync {
     fn density(&self, p: f64, t: f64) -> f64;
     /// d rho / dT at constant p (kg/(m^3 K)); negative for thermal expansion.
     fn density_dt(&self, p: f64, t: f64) -> f64;
+    /// The viscosity-temperature coefficient beta = -d ln eta / dT (1/K) of the low-shear
+    /// law at (p, T), by a central difference over +-0.5 K (Roelands' beta varies by well under
+    /// 1 % over a kelvin); 0 where the viscosity does not fall with T or the law fails there.
+    /// For the linearisations of the heating (`film_energy::LineCoefficients::heating_slope`,
+    /// the film-body update's softening in `contact`): how fast a warmer film shears less.
+    fn viscosity_temperature_coefficient(&self, p: f64, t: f64) -> f64 {
+        let beta = (self.viscosity(p, t - 0.5) / self.viscosity(p, t + 0.5)).ln();
+        if beta.is_finite() && beta > 0.0 {
+            beta
+        } else {
+            0.0
+        }
+    }
     /// Effective viscosity tau / gamma_dot (Pa s) at the shear rate magnitude `shear_rate`
     /// (1/s) for the low-shear viscosity `eta`; Newtonian (returns `eta`) unless overridden,
     /// e.g. with [`crate::lubricant::rheology::effective_viscosity`].

@@ -269,9 +269,10 @@ pub struct LineCoefficients {
     pub density: Vec<f64>,
     /// d(h rho)/dt (kg/(m^2 s)) of a transient line (zero when steady)
     pub mass_storage: Vec<f64>,
-    /// beta S (W/(m^3 K)), beta = -d ln eta / dT of the low-shear law at the point (1/K, zero
-    /// where the viscosity does not fall with T): how fast the shear heating falls as the
-    /// point warms, for the linear solve's source linearisation (see [`solve_line_linear`])
+    /// beta S (W/(m^3 K)), beta = -d ln eta / dT of the low-shear law at the point (1/K,
+    /// [`FilmLaws::viscosity_temperature_coefficient`]): how fast the shear heating falls as
+    /// the point warms, for the linear solve's source linearisation (see
+    /// [`solve_line_linear`]); zero on a plain step
     pub heating_slope: Vec<f64>,
     /// the temperature the coefficients were taken at (K)
     pub temperature: Vec<f64>,
@@ -582,11 +583,8 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
             c.compression[at] = drho[k] / rho[k] * (f.u[k] * col.dpdx + f.v[k] * col.dpdy);
             c.density[at] = rho[k];
             if opts.linearise_heating && c.heating[at] > 0.0 {
-                // beta by a forward difference over 1 K of the law
-                let beta = (eta[k] / laws.viscosity(p, ti[k] + 1.0)).ln();
-                if beta.is_finite() && beta > 0.0 {
-                    c.heating_slope[at] = beta * c.heating[at];
-                }
+                c.heating_slope[at] =
+                    laws.viscosity_temperature_coefficient(p, ti[k]) * c.heating[at];
             }
             if let Some(tr) = &line.transient {
                 let old = tr.rho_h_old[at];
@@ -1153,15 +1151,7 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
     // point warms), so linearised steps stay near 1/beta each.
     let mut linearise = false;
     let mut before = t.clone();
-    let beta_in = {
-        let ln_eta = |dt: f64| laws.viscosity(0.0, line.t_in + dt).ln();
-        let b = ln_eta(-0.5) - ln_eta(0.5);
-        if b.is_finite() && b > 0.0 {
-            b
-        } else {
-            0.0
-        }
-    };
+    let beta_in = laws.viscosity_temperature_coefficient(0.0, line.t_in);
     loop {
         iterations += 1;
         let mut o = *opts;
