@@ -310,6 +310,7 @@ impl LayerKernel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::reference::subsurface::{boussinesq_point, cerruti_point};
 
     /// Holl's vertical stress under the corner of a uniformly loaded l x b rectangle.
     fn holl(l: f64, b: f64, z: f64) -> f64 {
@@ -327,45 +328,6 @@ mod tests {
         }
     }
 
-    /// Boussinesq's compressive unit point load at the origin (Johnson 1985 sec. 3.2, Cartesian
-    /// form; tau_xy as xy (1 - 2 nu)(2 rho + z) / (rho^3 (rho + z)^2) - 3 xyz / rho^5).
-    fn boussinesq(x: f64, y: f64, z: f64, nu: f64) -> [f64; 6] {
-        let r2 = x * x + y * y;
-        let rho = (r2 + z * z).sqrt();
-        let (c, m) = (0.5 / PI, 1.0 - 2.0 * nu);
-        let f = (1.0 - z / rho) / r2;
-        let r5 = rho.powi(5);
-        [
-            c * (m * (f * (x * x - y * y) / r2 + z * y * y / (rho.powi(3) * r2)) - 3.0 * z * x * x / r5),
-            c * (m * (f * (y * y - x * x) / r2 + z * x * x / (rho.powi(3) * r2)) - 3.0 * z * y * y / r5),
-            -3.0 * c * z.powi(3) / r5,
-            -3.0 * c * y * z * z / r5,
-            -3.0 * c * x * z * z / r5,
-            c * (m * x * y * (2.0 * rho + z) / (rho.powi(3) * (rho + z).powi(2)) - 3.0 * x * y * z / r5),
-        ]
-    }
-
-    /// Cerruti's unit point force along +x at the origin (Johnson 1985 sec. 3.2; Love 1927); the
-    /// same formulas were checked against the potential solution symbolically before coding.
-    fn cerruti(x: f64, y: f64, z: f64, nu: f64) -> [f64; 6] {
-        let rho = (x * x + y * y + z * z).sqrt();
-        let a = rho + z;
-        let (c, m) = (0.5 / PI, 1.0 - 2.0 * nu);
-        let (r3, r5) = (rho.powi(3), rho.powi(5));
-        let (a2, a3) = (a * a, a * a * a);
-        [
-            c * (-3.0 * x.powi(3) / r5
-                + m * (x / r3 - 3.0 * x / (rho * a2) + x.powi(3) / (r3 * a2) + 2.0 * x.powi(3) / (rho * rho * a3))),
-            c * (-3.0 * x * y * y / r5
-                + m * (x / r3 - x / (rho * a2) + x * y * y / (r3 * a2) + 2.0 * x * y * y / (rho * rho * a3))),
-            -3.0 * c * x * z * z / r5,
-            -3.0 * c * x * y * z / r5,
-            -3.0 * c * x * x * z / r5,
-            c * (-3.0 * x * x * y / r5
-                + m * (-y / (rho * a2) + x * x * y / (r3 * a2) + 2.0 * x * x * y / (rho * rho * a3))),
-        ]
-    }
-
     #[test]
     fn far_field_matches_point_loads() {
         // a small cell seen from far away acts as a point load of its area; the error of the
@@ -373,7 +335,7 @@ mod tests {
         let (h, nu) = (1e-3, 0.3);
         for &(x, y, z) in &[(0.3, -0.2, 0.5), (0.1, 0.4, 0.3), (-0.5, 0.15, 0.2)] {
             let (n, t) = rectangle(x, y, z, [-h, h, -h, h], nu);
-            let (bn, bt) = (boussinesq(x, y, z, nu), cerruti(x, y, z, nu));
+            let (bn, bt) = (boussinesq_point(x, y, z, nu), cerruti_point(x, y, z, nu));
             let scale = bn.iter().chain(&bt).fold(0.0_f64, |m, v| m.max(v.abs()));
             for k in 0..6 {
                 let (gn, gt) = (n[k] / (4.0 * h * h), t[k] / (4.0 * h * h));
