@@ -1127,6 +1127,36 @@ fn _solve(
 }
 
 /// The inverse of `Case.__reduce__`: the case of a file's text, its name and the overrides.
+/// The Python exception that a library error of `kind` ("case", "case-file", "output",
+/// "solver", "cancelled") with `reason` becomes, returned, not raised: for the tests of the
+/// error mapping, since a case that makes the solver fail is refused before it reaches it.
+#[pyfunction]
+fn _exception_for(py: Python<'_>, kind: &str, reason: String) -> PyResult<Py<PyAny>> {
+    let e = match kind {
+        "case" => ehl::Error::Case {
+            file: "case.toml".into(),
+            key: "load.force".into(),
+            message: reason,
+        },
+        "case-file" => ehl::Error::CaseFile {
+            file: "case.toml".into(),
+            message: reason,
+        },
+        "output" => ehl::Error::Output {
+            path: "out".into(),
+            message: reason,
+        },
+        "solver" => ehl::Error::Solver(reason),
+        "cancelled" => ehl::Error::Cancelled,
+        other => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "unknown error kind {other:?}"
+            )))
+        }
+    };
+    Ok(py_err(py, e).into_value(py).into_any())
+}
+
 #[pyfunction]
 fn _case_from_state(
     py: Python<'_>,
@@ -1140,6 +1170,7 @@ fn _case_from_state(
 #[pymodule]
 fn _ehl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_case_from_state, m)?)?;
+    m.add_function(wrap_pyfunction!(_exception_for, m)?)?;
     m.add_class::<PyCase>()?;
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(_solve, m)?)?;

@@ -384,3 +384,80 @@ def test_a_tqdm_bar_on_a_terminal(monkeypatch, capsys):
     ehl.solve(small_ehl(), progress=True)
     err = capsys.readouterr().err
     assert "100%" in err and "Thesis ch. 2" in err
+
+
+def test_a_notebook_kernel_counts_as_interactive(monkeypatch):
+    # the branch a Jupyter kernel takes, whatever stderr is: an IPython module whose shell
+    # runs under an IPKernelApp
+    import sys
+    import types
+
+    class Shell:
+        config = {"IPKernelApp": {}}
+
+    fake = types.ModuleType("IPython")
+    fake.get_ipython = lambda: Shell()  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "IPython", fake)
+    monkeypatch.setattr(sys, "stderr", open(__file__))  # a file: not a terminal
+    try:
+        assert ehl._interactive()
+        Shell.config = {"TerminalIPythonApp": {}}  # IPython in a terminal, stderr redirected
+        assert not ehl._interactive()
+    finally:
+        sys.stderr.close()
+
+
+@pytest.mark.parametrize(
+    "kind, cls, parent",
+    [
+        ("solver", ehl.SolverError, RuntimeError),
+        ("case", ehl.CaseError, ValueError),
+        ("case-file", ehl.CaseError, ValueError),
+        ("output", ehl.OutputError, OSError),
+    ],
+)
+def test_library_errors_become_their_python_classes(kind, cls, parent):
+    e = ehl._ehl._exception_for(kind, "what went wrong")
+    assert isinstance(e, cls) and isinstance(e, parent) and isinstance(e, ehl.EhlError)
+    assert e.reason == "what went wrong" and "what went wrong" in str(e)
+    if kind == "case":
+        assert (e.file, e.key) == ("case.toml", "load.force")
+    if kind == "output":
+        assert e.path == "out"
+    assert isinstance(ehl._ehl._exception_for("cancelled", ""), KeyboardInterrupt)
+    with pytest.raises(ValueError):
+        ehl._ehl._exception_for("no-such-kind", "")
+
+
+def test_the_type_stubs_name_what_the_module_has():
+    # every class, function and member of the compiled module is in _ehl.pyi, and the stubs
+    # name nothing the module lacks
+    import ast
+    import inspect
+
+    stub = ast.parse((pathlib.Path(ehl.__file__).parent / "_ehl.pyi").read_text())
+    declared = {}
+    for node in stub.body:
+        if isinstance(node, ast.ClassDef):
+            members = set()
+            for n in node.body:
+                if isinstance(n, ast.FunctionDef):
+                    members.add(n.name)
+                elif isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name):
+                    members.add(n.target.id)
+            declared[node.name] = members
+        elif isinstance(node, ast.FunctionDef):
+            declared[node.name] = None
+    module = ehl._ehl
+    actual = {n for n in dir(module) if not n.startswith("__")}
+    assert set(declared) == actual, set(declared) ^ actual
+    for name, members in declared.items():
+        obj = getattr(module, name)
+        if members is None:
+            assert callable(obj), name
+            continue
+        have = {m for m, _ in inspect.getmembers(obj) if not m.startswith("__")}
+        public = {m for m in members if not m.startswith("__")}
+        assert public == have, f"{name}: {public ^ have}"
+        for dunder in members - public:
+            assert hasattr(obj, dunder), f"{name}.{dunder}"

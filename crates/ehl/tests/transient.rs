@@ -130,7 +130,7 @@ fn smooth_steady(c: &LineCase, nx: usize, x_range: (f64, f64), srr: f64) -> (Gri
 #[track_caller]
 fn assert_every_step_on(steps: &[StepResult], reference: &StepResult, ph: f64, hc: f64) {
     for s in steps {
-        assert!(s.converged, "step {}: {}", s.step, s.termination);
+        assert!(s.converged, "step {}: {}", s.step, s.reason);
         let dp = max_abs_diff(&s.pressure, &reference.pressure) / ph;
         let dh = max_abs_diff(&s.film, &reference.film) / hc;
         assert!(
@@ -590,7 +590,7 @@ fn a_groove_on_a_slow_body_is_carried_consistently() {
         .to_vec();
         let case = ehl::case::load_file(&path, &set).expect("example case");
         let s = ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary;
-        assert!(s.converged, "{}", s.termination);
+        assert!(s.converged, "{}", s.reason);
         s.max_pressure_over_travel_pa.unwrap()
     };
     let (coarse, fine) = (peak(512), peak(1024));

@@ -157,3 +157,10 @@ def _solve(
     callback: Optional[Callable[[float, str], None]] = None,
     poll: float = 0.05,
 ) -> Solution: ...
+
+def _case_from_state(text: str, file: str, overrides: List[str]) -> Case:
+    """A case from its pickled state (``Case.__reduce__``)."""
+
+def _exception_for(kind: str, reason: str) -> BaseException:
+    """The exception that a library error of ``kind`` ("case", "case-file", "output",
+    "solver", "cancelled") becomes, returned, not raised (the error mapping's tests)."""

@@ -46,6 +46,7 @@ use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
     better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
+    Termination,
 };
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;
@@ -179,7 +180,8 @@ pub struct StepResult {
     /// m
     pub h0: f64,
     pub converged: bool,
-    pub termination: String,
+    /// why the step's Newton solve stopped (its `Display` is the sentence of `summary.json`)
+    pub reason: Termination,
     /// relative residual (see [`super::EhlResult::residual`])
     pub residual: f64,
     /// (sum p dA - load) / load
@@ -370,7 +372,7 @@ fn run(
         density: steady.density.clone(),
         h0: steady.h0,
         converged: steady.converged,
-        termination: steady.termination.clone(),
+        reason: steady.reason.clone(),
         residual: steady.residual,
         load_error: steady.load_error,
         newton_iterations: steady.iterations,
@@ -596,7 +598,7 @@ fn run(
                 .collect(),
             h0: st.h0 * hs,
             converged: end.converged,
-            termination: end.reason.to_string(),
+            reason: end.reason,
             residual: end.residual,
             load_error: end.load_error,
             newton_iterations: stats.newton,

@@ -260,7 +260,7 @@ pub(super) fn solve(
             }
         } else {
             if first_failure.is_none() {
-                first_failure = Some((s.step, s.termination.clone()));
+                first_failure = Some((s.step, s.reason.to_string()));
             }
             None
         };
