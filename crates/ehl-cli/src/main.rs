@@ -209,11 +209,30 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     // before solving: refuse a folder ehl did not write, or one another process is writing
     let lock = ehl::output::OutputLock::acquire(&dir)?;
     let bar = progress::Bar::new(args.quiet, 1000);
+    // a transient run streams its per-step files (timeline rows, frames) into the output's
+    // temporary folder as it goes, so that it holds no frame in memory; the folder replaces
+    // the output only once every file is written
+    let transient = case.kind == ehl::case::Kind::Ehl && ehl::run::transient::kinematics(&case).is_some();
+    if transient {
+        let staging = ehl::output::Staging::begin(&dir)?;
+        let mut stream = ehl::output::stream::TransientStream::new(staging.path(), &case);
+        let solution = ehl::run::solve_with(&case, &bar, &mut stream);
+        bar.finish();
+        let solution = solution?;
+        ehl::output::write_staged(staging, &case, &solution, Some(stream))?;
+        drop(lock);
+        return report(&solution, &dir);
+    }
     let solution = ehl::run::solve(&case, &bar);
     bar.finish();
     let solution = solution?;
     ehl::output::write_locked(&lock, &case, &solution)?;
     drop(lock);
+    report(&solution, &dir)
+}
+
+/// The result line, the warnings and the exit status of a written run.
+fn report(solution: &ehl::solution::Solution, dir: &std::path::Path) -> Result<ExitCode> {
     io::out(&format!(
         "{} -> {}",
         result_line(&solution.summary),

@@ -155,6 +155,59 @@ fn sigterm_removes_what_the_run_had_started() {
     assert_eq!(names(w.path()), ["case.toml"]);
 }
 
+/// SIGTERM while a transient run streams its frames into the output's temporary folder:
+/// exit 130, and neither that folder (its spill files, its `.vtr` frames) nor a lock nor an
+/// output folder is left.
+#[cfg(unix)]
+#[test]
+fn sigterm_during_a_streamed_transient_run_leaves_nothing() {
+    let text = std::fs::read_to_string(examples().join("ehl_transient_line_groove.toml")).unwrap();
+    let w = Work::new(&edit(&text, "travel =", "travel = { from = -1.2e-3, to = 1.0e-3, steps = 100000 }"));
+    let (o, e) = (w.file(".stdout"), w.file(".stderr"));
+    let mut child = ehl_cmd(&w, &["run", "case.toml", "--out", "results"])
+        .stdout(std::fs::File::create(&o).unwrap())
+        .stderr(std::fs::File::create(&e).unwrap())
+        .spawn()
+        .unwrap();
+    // wait until many frames have been streamed (`.vtr` files in the temporary folder): the
+    // solver keeps writing new ones while the signal handler empties the folder, which must
+    // still go (a single removal pass left it behind)
+    let start = Instant::now();
+    let streaming = || {
+        std::fs::read_dir(w.path()).unwrap().any(|d| {
+            let d = d.unwrap();
+            d.file_name().to_string_lossy().starts_with(".results.tmp-")
+                && std::fs::read_dir(d.path().join("frames")).is_ok_and(|f| f.count() >= 500)
+        })
+    };
+    while !streaming() {
+        if start.elapsed() > Duration::from_secs(60) || child.try_wait().unwrap().is_some() {
+            let _ = child.kill();
+            panic!("no frame was streamed into the temporary folder");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed() > Duration::from_secs(120) {
+            let _ = child.kill();
+            panic!("ehl did not stop on SIGTERM");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    std::fs::remove_file(o).unwrap();
+    std::fs::remove_file(e).unwrap();
+    assert_eq!(names(w.path()), ["case.toml"]);
+}
+
 // ------------------------------------------------------------------ 2. closed and full streams
 
 fn check_args() -> Vec<String> {

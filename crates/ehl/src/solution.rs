@@ -364,6 +364,9 @@ pub struct Frame {
 #[derive(Debug, Clone, Default)]
 pub struct TransientRecord {
     pub timeline: Vec<StepRecord>,
+    /// the kept frames held in memory: all of them from [`crate::run::solve`]; none from a
+    /// run whose [`crate::run::StepSink`] streamed them to disk (`ehl run`), unless the case
+    /// has `[stress]`
     pub frames: Vec<Frame>,
     /// (requested x_p (m), the step nearest to it, its fields)
     pub snapshots: Vec<(f64, usize, Fields)>,

@@ -590,7 +590,7 @@ fn a_groove_on_a_slow_body_is_carried_consistently() {
         .to_vec();
         let case = ehl::case::load_file(&path, &set).expect("example case");
         let s = ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary;
-        assert!(s.converged, "{}", s.reason);
+        assert!(s.converged, "{}", s.termination);
         s.max_pressure_over_travel_pa.unwrap()
     };
     let (coarse, fine) = (peak(512), peak(1024));

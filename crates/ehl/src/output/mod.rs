@@ -43,6 +43,7 @@ pub mod colormap;
 pub mod csv;
 pub mod npz;
 pub mod plot;
+pub mod stream;
 pub mod stress;
 pub mod summary;
 pub mod synthetic;
@@ -89,9 +90,25 @@ pub fn write_locked(lock: &OutputLock, case: &Case, solution: &Solution) -> Resu
     let dir = lock.dir();
     write_with(
         dir,
-        |tmp| write_files(tmp, case, solution),
+        |tmp| write_files(tmp, case, solution, None),
         || validate(dir, solution),
     )
+}
+
+/// The outputs of a run whose transient files were streamed into `staging` by `stream` as it
+/// ran ([`stream::TransientStream`]; `None` for a steady run): checks the solution
+/// ([`validate`]), writes the other files beside them and puts the folder in place of the
+/// output folder. On an error the staging folder is removed and the output folder is as it was.
+/// The caller holds the output's [`OutputLock`].
+pub fn write_staged(
+    staging: Staging,
+    case: &Case,
+    solution: &Solution,
+    stream: Option<stream::TransientStream>,
+) -> Result<()> {
+    validate(&staging.dir, solution)?;
+    write_files(staging.path(), case, solution, stream)?;
+    staging.commit()
 }
 
 /// Checks that a solution can be written: field lengths, finite values, finite summary figures,
@@ -203,7 +220,12 @@ pub(crate) fn named(f: &crate::solution::Fields) -> Vec<(&'static str, &[f64])> 
     v
 }
 
-fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
+fn write_files(
+    tmp: &Path,
+    case: &Case,
+    solution: &Solution,
+    stream: Option<stream::TransientStream>,
+) -> Result<()> {
     summary::write(&tmp.join(SUMMARY_JSON), case, solution)?;
     npz::write(&tmp.join(FIELDS_NPZ), solution)?;
     vtk::write(&tmp.join(FIELDS_VTK), case, solution)?;
@@ -214,7 +236,10 @@ fn write_files(tmp: &Path, case: &Case, solution: &Solution) -> Result<()> {
         plot::write_film(&tmp.join(FILM_PNG), case, solution)?;
     }
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
-    transient::write(tmp, case, solution)?;
+    match stream {
+        Some(s) => s.finish(tmp, case, solution)?,
+        None => transient::write(tmp, case, solution)?,
+    }
     stress::write(tmp, case, solution)?;
     temperature::write(tmp, case, solution)?;
     Ok(())
@@ -324,16 +349,36 @@ pub fn unregister_temp(path: &Path) {
     }
 }
 
+/// Set by [`abort_cleanup`]: the process is ending on a signal.
+static ABORTING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether [`abort_cleanup`] has run: a writer streaming into a temporary folder stops.
+pub fn aborting() -> bool {
+    ABORTING.load(Ordering::SeqCst)
+}
+
 /// For a signal handler about to end the process: removes every registered temporary folder,
 /// temporary file and lock file, and keeps every writer of this process from going on (the
 /// registry stays locked). An output folder is never left half replaced. Call it once, then
 /// exit.
 pub fn abort_cleanup() {
+    // writers that stream into a temporary folder while the solver runs (a transient run's
+    // frames) check this before each write and stop
+    ABORTING.store(true, Ordering::SeqCst);
     let guard = live();
     for p in guard.iter() {
         match std::fs::symlink_metadata(p) {
             Ok(m) if m.is_dir() => {
-                let _ = std::fs::remove_dir_all(p);
+                // a write already under way may add a file while the folder is emptied (the
+                // removal then fails on the folder itself): try again, for at most a second
+                for _ in 0..100 {
+                    match std::fs::remove_dir_all(p) {
+                        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                            std::thread::sleep(std::time::Duration::from_millis(10))
+                        }
+                        _ => break,
+                    }
+                }
             }
             Ok(_) => {
                 let _ = std::fs::remove_file(p);
@@ -606,38 +651,87 @@ fn write_with(
     check: impl FnOnce() -> Result<()>,
 ) -> Result<()> {
     check()?;
-    let (parent, name) = parent_and_name(dir)?;
-    if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
-        return Err(io_err(
-            dir,
-            "exists and is not a folder; not replacing it (choose another --out)",
-        ));
+    let staging = Staging::begin(dir)?;
+    fill(staging.path())?;
+    staging.commit()
+}
+
+/// The temporary sibling folder of an atomic write, open: files go into [`Staging::path`], and
+/// [`Staging::commit`] puts the folder in place of `dir`. Dropped without a commit (an error on
+/// the way), the folder is removed; on Ctrl-C [`abort_cleanup`] removes it. A transient run of
+/// the CLI opens it before solving and streams its per-step files into it
+/// ([`stream::TransientStream`]).
+pub struct Staging {
+    dir: PathBuf,
+    parent: PathBuf,
+    name: String,
+    tag: String,
+    tmp: PathBuf,
+    open: bool,
+}
+
+impl Staging {
+    /// Checks that ehl may write `dir` (not a file; replaceable: see [`check_replaceable`]),
+    /// creates the missing parent folders and the temporary folder with the [`MARKER`].
+    pub fn begin(dir: &Path) -> Result<Staging> {
+        let (parent, name) = parent_and_name(dir)?;
+        if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
+            return Err(io_err(
+                dir,
+                "exists and is not a folder; not replacing it (choose another --out)",
+            ));
+        }
+        check_replaceable(dir)?;
+        create_parent(dir, &parent)?;
+        let tag = format!(
+            "{}-{}",
+            std::process::id(),
+            SEQ.fetch_add(1, Ordering::Relaxed)
+        );
+        let tmp = parent.join(format!(".{name}.tmp-{tag}"));
+        if tmp.exists() {
+            // a leftover of a crashed process with the same pid: it is ours to clear
+            std::fs::remove_dir_all(&tmp).map_err(|e| io_err(&tmp, e))?;
+        }
+        register_temp(&tmp);
+        if let Err(e) = std::fs::create_dir(&tmp) {
+            unregister_temp(&tmp);
+            return Err(io_err_at(dir, &parent, "cannot write in", &e));
+        }
+        let staging = Staging {
+            dir: dir.to_path_buf(),
+            parent,
+            name,
+            tag,
+            tmp,
+            open: true,
+        };
+        write_marker(&staging.tmp)?;
+        Ok(staging)
     }
-    check_replaceable(dir)?;
-    create_parent(dir, &parent)?;
-    let tag = format!(
-        "{}-{}",
-        std::process::id(),
-        SEQ.fetch_add(1, Ordering::Relaxed)
-    );
-    let tmp = parent.join(format!(".{name}.tmp-{tag}"));
-    if tmp.exists() {
-        // a leftover of a crashed process with the same pid: it is ours to clear
-        std::fs::remove_dir_all(&tmp).map_err(|e| io_err(&tmp, e))?;
+
+    /// The temporary folder being filled.
+    pub fn path(&self) -> &Path {
+        &self.tmp
     }
-    register_temp(&tmp);
-    if let Err(e) = std::fs::create_dir(&tmp) {
-        unregister_temp(&tmp);
-        return Err(io_err_at(dir, &parent, "cannot write in", &e));
+
+    /// Replaces `dir` by the filled folder (see [`replace_dir`]); on an error the temporary
+    /// folder is removed and `dir` is as it was.
+    pub fn commit(mut self) -> Result<()> {
+        replace_dir(&self.tmp, &self.dir, &self.parent, &self.name, &self.tag)?;
+        self.open = false;
+        unregister_temp(&self.tmp);
+        Ok(())
     }
-    let result = write_marker(&tmp)
-        .and_then(|()| fill(&tmp))
-        .and_then(|()| replace_dir(&tmp, dir, &parent, &name, &tag));
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&tmp);
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if self.open {
+            let _ = std::fs::remove_dir_all(&self.tmp);
+            unregister_temp(&self.tmp);
+        }
     }
-    unregister_temp(&tmp);
-    result
 }
 
 /// Moves `tmp` to `dir`; an existing `dir` is first moved aside and removed only once the new

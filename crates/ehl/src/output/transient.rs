@@ -135,15 +135,27 @@ pub fn write(dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
         write_passage_gif(&dir.join(PASSAGE_GIF), case_a, g_a, t_a)?;
     }
     // the still of the passage: the kept frame with the highest pressure
-    if let Some(k) = (0..t_a.frames.len()).max_by(|&a, &b| {
-        let m = |f: &Frame| f.pressure.iter().cloned().fold(0.0f64, f64::max);
-        m(&t_a.frames[a]).total_cmp(&m(&t_a.frames[b]))
-    }) {
+    if let Some(k) = highest_frame(t_a.frames.iter().map(frame_peak)) {
         write_passage_frame_png(&dir.join(PASSAGE_PNG), case_a, g_a, t_a, k)?;
     }
     write_vtk_series(dir, g, t)?;
     write_snapshots(&dir.join(SNAPSHOTS_DIR), case, solution)?;
     Ok(())
+}
+
+/// The largest pressure of a frame (0 when none is positive): what `passage.png` picks by.
+pub fn frame_peak(f: &Frame) -> f64 {
+    f.pressure.iter().cloned().fold(0.0f64, f64::max)
+}
+
+/// The index of the frame `passage.png` shows among frames of these peaks: the highest, the
+/// last of equals.
+pub fn highest_frame(peaks: impl IntoIterator<Item = f64>) -> Option<usize> {
+    peaks
+        .into_iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(k, _)| k)
 }
 
 /// Checks the transient record before anything is written (called by [`super::validate`]):
@@ -196,16 +208,7 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
         }
     }
     for f in &t.frames {
-        let at = format!("frame of step {}", f.step);
-        for (name, v) in [("time_s", f.time_s), ("x_p_m", f.x_p_m)] {
-            if !v.is_finite() {
-                return Err(format!(
-                    "{at}: `{name}` is {v}; refusing to write a non-finite value"
-                ));
-            }
-        }
-        super::check_field(grid, &at, "pressure", &f.pressure)?;
-        super::check_field(grid, &at, "film", &f.film)?;
+        validate_frame(grid, f)?;
     }
     for (x_p, step, fields) in &t.snapshots {
         let at = format!("snapshot at x_p = {x_p:e} m (step {step})");
@@ -226,69 +229,102 @@ pub fn validate(grid: &Grid, t: &TransientRecord) -> std::result::Result<(), Str
     Ok(())
 }
 
+/// The checks of [`validate`] on one frame: finite time and x_p, fields of `grid.len()` finite
+/// values (the film may be `+inf`).
+pub fn validate_frame(grid: &Grid, f: &Frame) -> std::result::Result<(), String> {
+    let at = format!("frame of step {}", f.step);
+    for (name, v) in [("time_s", f.time_s), ("x_p_m", f.x_p_m)] {
+        if !v.is_finite() {
+            return Err(format!(
+                "{at}: `{name}` is {v}; refusing to write a non-finite value"
+            ));
+        }
+    }
+    super::check_field(grid, &at, "pressure", &f.pressure)?;
+    super::check_field(grid, &at, "film", &f.film)
+}
+
 // ---------------------------------------------------------------- timeline.csv
 
-/// The text of `timeline.csv`.
-pub fn timeline_csv(t: &TransientRecord) -> String {
-    let mut s = String::with_capacity(256 * (t.timeline.len() + 1));
-    s.push_str(&TIMELINE_COLUMNS.join(","));
-    // a thermal run: its columns on every row (empty on a step without temperatures)
-    let thermal = t.timeline.iter().any(|r| r.thermal.is_some());
+/// The header line of `timeline.csv` (with its newline): [`TIMELINE_COLUMNS`], then
+/// [`THERMAL_COLUMNS`] for a thermal run.
+pub fn timeline_header(thermal: bool) -> String {
+    let mut s = TIMELINE_COLUMNS.join(",");
     if thermal {
         s.push(',');
         s.push_str(&THERMAL_COLUMNS.join(","));
     }
     s.push('\n');
-    for r in &t.timeline {
-        let friction = r
-            .friction_coefficient
-            .map(|f| format!("{f:e}"))
-            .unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "{},{:e},{:e},{:e},{:e},{:e},{friction},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
-            r.step,
-            r.time_s,
-            r.x_p_m,
-            r.max_pressure_pa,
-            r.min_film_m,
-            r.central_film_m,
-            r.load_error,
-            r.converged,
-            r.centerline_min_film_m,
-            r.h0_m,
-            r.newton_iterations,
-            r.linear_iterations,
-            r.operator_applications,
-            r.mass_balance,
-            r.mass_inflow_kg_s,
-            r.mass_outflow_kg_s,
-            r.side_leakage_kg_s,
-            r.mass_storage_kg_s,
-            r.wall_time_s,
-        );
-        if thermal {
-            s.pop();
-            match &r.thermal {
-                Some(th) => {
-                    let _ = writeln!(
-                        s,
-                        ",{:e},{:e},{:e},{:e},{:e},{:e},{}",
-                        th.max_film_temperature_k,
-                        th.max_surface_temperature_1_k,
-                        th.max_surface_temperature_2_k,
-                        th.heat_generated_w,
-                        th.heat_stored_w,
-                        th.energy_balance_error,
-                        th.thermal_passes
-                    );
-                }
-                None => s.push_str(&",".repeat(THERMAL_COLUMNS.len())),
+    s
+}
+
+/// Appends the line of `r` (with its newline) to `s`; `thermal`: the run's header has the
+/// thermal columns (empty cells on a step without temperatures).
+pub fn timeline_row(s: &mut String, r: &StepRecord, thermal: bool) {
+    let friction = r
+        .friction_coefficient
+        .map(|f| format!("{f:e}"))
+        .unwrap_or_default();
+    let _ = writeln!(
+        s,
+        "{},{:e},{:e},{:e},{:e},{:e},{friction},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+        r.step,
+        r.time_s,
+        r.x_p_m,
+        r.max_pressure_pa,
+        r.min_film_m,
+        r.central_film_m,
+        r.load_error,
+        r.converged,
+        r.centerline_min_film_m,
+        r.h0_m,
+        r.newton_iterations,
+        r.linear_iterations,
+        r.operator_applications,
+        r.mass_balance,
+        r.mass_inflow_kg_s,
+        r.mass_outflow_kg_s,
+        r.side_leakage_kg_s,
+        r.mass_storage_kg_s,
+        r.wall_time_s,
+    );
+    if thermal {
+        s.pop();
+        match &r.thermal {
+            Some(th) => {
+                let _ = writeln!(
+                    s,
+                    ",{:e},{:e},{:e},{:e},{:e},{:e},{}",
+                    th.max_film_temperature_k,
+                    th.max_surface_temperature_1_k,
+                    th.max_surface_temperature_2_k,
+                    th.heat_generated_w,
+                    th.heat_stored_w,
+                    th.energy_balance_error,
+                    th.thermal_passes
+                );
             }
-            if !s.ends_with('\n') {
-                s.push('\n');
-            }
+            None => s.push_str(&",".repeat(THERMAL_COLUMNS.len())),
         }
+        if !s.ends_with('\n') {
+            s.push('\n');
+        }
+    }
+}
+
+/// Whether `timeline.csv` has the thermal columns: some step of `t` has temperatures.
+pub fn timeline_is_thermal(t: &TransientRecord) -> bool {
+    t.timeline.iter().any(|r| r.thermal.is_some())
+}
+
+/// The text of `timeline.csv`.
+pub fn timeline_csv(t: &TransientRecord) -> String {
+    // a thermal run: its columns on every row (empty on a step without temperatures)
+    let thermal = timeline_is_thermal(t);
+    let mut s = String::with_capacity(256 * (t.timeline.len() + 1));
+    s.push_str(&timeline_header(thermal));
+    for r in &t.timeline {
+        timeline_row(&mut s, r, thermal);
     }
     s
 }
@@ -344,20 +380,36 @@ pub fn frame_file_name(step: usize) -> String {
 
 /// The text of `passage.pvd`: a ParaView collection of the frames, `timestep` = time (s).
 pub fn pvd(t: &TransientRecord) -> String {
+    pvd_of(t.frames.iter().map(|f| (f.step, f.time_s)))
+}
+
+/// [`pvd`] of frames given as (step, time in s).
+pub fn pvd_of(frames: impl IntoIterator<Item = (usize, f64)>) -> String {
     let mut s = String::from(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" \
          byte_order=\"LittleEndian\">\n  <Collection>\n",
     );
-    for f in &t.frames {
+    for (step, time_s) in frames {
         let _ = writeln!(
             s,
             "    <DataSet timestep=\"{:e}\" group=\"\" part=\"0\" file=\"{FRAMES_DIR}/{}\"/>",
-            f.time_s,
-            frame_file_name(f.step)
+            time_s,
+            frame_file_name(step)
         );
     }
     s.push_str("  </Collection>\n</VTKFile>\n");
     s
+}
+
+/// Writes the `.vtr` file of frame `f` into `folder` (the [`FRAMES_DIR`] folder).
+pub fn write_vtr_frame(folder: &Path, grid: &Grid, f: &Frame) -> Result<()> {
+    let path = folder.join(frame_file_name(f.step));
+    let bytes = super::vtk::rectilinear_xml(
+        grid,
+        &[("pressure", &f.pressure), ("film", &f.film)],
+        Some(f.time_s),
+    );
+    std::fs::write(&path, bytes).map_err(|e| super::io_err(&path, e))
 }
 
 /// Writes `frames/frame_NNNNN.vtr` for every frame and `passage.pvd` into `dir`; nothing when
@@ -369,13 +421,7 @@ pub fn write_vtk_series(dir: &Path, grid: &Grid, t: &TransientRecord) -> Result<
     let folder = dir.join(FRAMES_DIR);
     std::fs::create_dir_all(&folder).map_err(|e| super::io_err(&folder, e))?;
     for f in &t.frames {
-        let path = folder.join(frame_file_name(f.step));
-        let bytes = super::vtk::rectilinear_xml(
-            grid,
-            &[("pressure", &f.pressure), ("film", &f.film)],
-            Some(f.time_s),
-        );
-        std::fs::write(&path, bytes).map_err(|e| super::io_err(&path, e))?;
+        write_vtr_frame(&folder, grid, f)?;
     }
     let path = dir.join(PASSAGE_PVD);
     std::fs::write(&path, pvd(t)).map_err(|e| super::io_err(&path, e))
@@ -547,7 +593,7 @@ pub fn zoom_window(case: &Case, grid: &Grid) -> Option<(f64, f64)> {
 
 /// The strip of `g` whose cell centres lie in `y0 ..= y1` and its first and last row; `None`
 /// when fewer than 4 rows fall inside.
-fn crop_grid(g: &Grid, y0: f64, y1: f64) -> Option<(Grid, usize, usize)> {
+pub(super) fn crop_grid(g: &Grid, y0: f64, y1: f64) -> Option<(Grid, usize, usize)> {
     let rows: Vec<usize> = (0..g.ny)
         .filter(|&j| g.y(j) >= y0 && g.y(j) <= y1)
         .collect();
@@ -568,7 +614,7 @@ fn crop_grid(g: &Grid, y0: f64, y1: f64) -> Option<(Grid, usize, usize)> {
 
 /// The record with every frame cut to the strip `y0 ..= y1` (see [`crop_grid`]), for the
 /// zoomed animation; the timeline is kept whole, the snapshots are dropped.
-fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid, TransientRecord)> {
+pub(super) fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid, TransientRecord)> {
     let (sub, j0, j1) = crop_grid(g, y0, y1)?;
     let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
     let frames = t
@@ -1398,8 +1444,24 @@ pub fn write_passage_gif(path: &Path, case: &Case, grid: &Grid, t: &TransientRec
     if t.frames.len() < 2 {
         return Err(draw_err(path, "an animation needs at least two frames"));
     }
-    ensure_font().map_err(|e| draw_err(path, e))?;
     let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
+    write_passage_gif_of(path, case, grid, t, &shown)
+}
+
+/// [`write_passage_gif`] of the frames `shown` of `t` (indices into `t.frames`, at least two):
+/// the streaming writer holds only these.
+pub(super) fn write_passage_gif_of(
+    path: &Path,
+    case: &Case,
+    grid: &Grid,
+    t: &TransientRecord,
+    shown: &[usize],
+) -> Result<()> {
+    if shown.len() < 2 {
+        return Err(draw_err(path, "an animation needs at least two frames"));
+    }
+    ensure_font().map_err(|e| draw_err(path, e))?;
+    let shown = shown.to_vec();
     let passage = Passage::new(case, grid, t, &shown);
     // One palette for the whole animation (a global colour table: no flicker between frames),
     // learnt by NeuQuant from a few frames spread over the passage; every frame, drawn into its
@@ -1488,7 +1550,19 @@ pub fn write_passage_frame_png(
         ));
     }
     let shown = gif_frame_indices(t.frames.len(), GIF_MAX_FRAMES);
-    let passage = Passage::new(case, grid, t, &shown);
+    write_passage_frame_png_of(path, case, grid, t, k, &shown)
+}
+
+/// [`write_passage_frame_png`] with the axes and colour scale of the frames `shown` of `t`.
+pub(super) fn write_passage_frame_png_of(
+    path: &Path,
+    case: &Case,
+    grid: &Grid,
+    t: &TransientRecord,
+    k: usize,
+    shown: &[usize],
+) -> Result<()> {
+    let passage = Passage::new(case, grid, t, shown);
     render_sized(path, (GIF_WIDTH, GIF_HEIGHT), |root| passage.draw(root, k))
 }
 

@@ -29,6 +29,45 @@ impl Progress for Silent {
     fn report(&self, _fraction: f64, _message: &str) {}
 }
 
+/// Receives the steps of a transient run as they are solved: the output writer of the CLI
+/// streams `timeline.csv`, the frames' `.vtr` files and the data of `frames.npz` to disk through
+/// it, so that a long run holds no frame in memory. [`solve`] uses [`KeepFrames`].
+pub trait StepSink: Send {
+    /// Called once before the first step, with the grid of the frames and whether the run is
+    /// thermal (the extra timeline columns).
+    fn begin(&mut self, _grid: &Grid, _thermal: bool) -> Result<()> {
+        Ok(())
+    }
+    /// Called after each step (step 0 is the steady start) with its timeline row and, for a
+    /// kept step (every `output.frames_every`-th and the last), its frame. Returns whether the
+    /// run keeps the frame in [`crate::solution::TransientRecord::frames`] as well. An error
+    /// stops the run and is returned by [`solve_with`].
+    fn step(
+        &mut self,
+        row: &crate::solution::StepRecord,
+        frame: Option<&crate::solution::Frame>,
+    ) -> Result<bool>;
+    /// Whether the frames this sink takes need memory (the default `output.frames_every` fits
+    /// them into the memory left free; a sink that writes them to disk returns false and the
+    /// run keeps every step's frame unless the case says otherwise).
+    fn frames_in_memory(&self) -> bool {
+        true
+    }
+}
+
+/// The [`StepSink`] of [`solve`]: every kept frame stays in the solution, nothing is written.
+pub struct KeepFrames;
+
+impl StepSink for KeepFrames {
+    fn step(
+        &mut self,
+        _row: &crate::solution::StepRecord,
+        _frame: Option<&crate::solution::Frame>,
+    ) -> Result<bool> {
+        Ok(true)
+    }
+}
+
 /// The elastic operator factory for a case: the plane-strain strip kernel for an infinite line
 /// contact, else the half-space with, for each finite roller, the mirror images about its free
 /// ends (`solver.mirror_levels`) carrying Guilbault's psi of that body's Poisson ratio when
@@ -302,6 +341,14 @@ fn argmax(v: &[f64]) -> (usize, f64) {
 /// Solves `case`. A solver that does not converge still returns a solution with
 /// `summary.converged == false`; errors are reserved for cases that cannot be solved at all.
 pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
+    solve_with(case, progress, &mut KeepFrames)
+}
+
+/// [`solve`], with the steps of a transient run passed to `sink` as they are solved (a steady
+/// run never calls it). The frames `sink` declines stay out of the solution's
+/// [`crate::solution::TransientRecord::frames`], except in a run with `[stress]`, whose
+/// worst-frame analysis needs them all.
+pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink) -> Result<Solution> {
     let start = Instant::now();
     let geometry = Geometry::new(case);
     let grid = geometry.grid();
@@ -392,7 +439,11 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
         Kind::Ehl => match kin {
             Some(kin) => {
                 let est = memory_estimate(case);
-                let budget = memory_limit().0 - est.bytes;
+                let budget = if sink.frames_in_memory() {
+                    memory_limit().0 - est.bytes
+                } else {
+                    f64::INFINITY
+                };
                 transient::solve(
                     &transient::Context {
                         case,
@@ -408,6 +459,7 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
                     },
                     summary,
                     progress,
+                    sink,
                 )?
             }
             None => solve_ehl(

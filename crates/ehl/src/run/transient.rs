@@ -154,6 +154,7 @@ pub(super) fn solve(
     ctx: &Context,
     mut summary: Summary,
     progress: &dyn Progress,
+    sink: &mut dyn super::StepSink,
 ) -> Result<Solution> {
     let case = ctx.case;
     let (lubricant, motion) = match (&case.lubricant, &case.motion) {
@@ -230,6 +231,10 @@ pub(super) fn solve(
         Some(_) => Some(super::thermal::contact_for(case, grid)?),
         None => None,
     };
+    // the run's own need for every frame: the worst-frame stress analysis after the run
+    let keep_anyway = case.stress.is_some();
+    sink.begin(&grid, contact.is_some())?;
+    let mut sink_error: Option<Error> = None;
     let mut observer = |s: &StepResult| {
         let x_p = kin.x_p(s.time);
         let friction = if let (true, Some(th)) = (s.converged, &s.thermal) {
@@ -271,7 +276,7 @@ pub(super) fn solve(
             .filter(|h| h.is_finite())
             .fold(f64::INFINITY, f64::min);
         let max_p = s.pressure.iter().cloned().fold(0.0f64, f64::max);
-        record.timeline.push(StepRecord {
+        let row = StepRecord {
             step: s.step,
             time_s: s.time,
             x_p_m: x_p,
@@ -321,16 +326,26 @@ pub(super) fn solve(
                 energy_balance_error: th.heat.balance_error(),
                 thermal_passes: th.passes,
             }),
+        };
+        let frame = (s.step.is_multiple_of(ctx.frames_every) || s.step == steps).then(|| Frame {
+            step: s.step,
+            time_s: s.time,
+            x_p_m: x_p,
+            pressure: s.pressure.clone(),
+            film: s.film.iter().map(|&h| h.max(0.0)).collect(),
         });
-        if s.step.is_multiple_of(ctx.frames_every) || s.step == steps {
-            record.frames.push(Frame {
-                step: s.step,
-                time_s: s.time,
-                x_p_m: x_p,
-                pressure: s.pressure.clone(),
-                film: s.film.iter().map(|&h| h.max(0.0)).collect(),
-            });
+        match sink.step(&row, frame.as_ref()) {
+            Ok(keep) => {
+                if let (true, Some(f)) = (keep || keep_anyway, frame) {
+                    record.frames.push(f);
+                }
+            }
+            Err(e) => {
+                sink_error = Some(e);
+                return ControlFlow::Break(());
+            }
         }
+        record.timeline.push(row);
         if let Some(pr) = passage.as_mut() {
             pr.step(
                 case,
@@ -371,6 +386,9 @@ pub(super) fn solve(
         ),
         None => solve_transient(&problem, &params, &mut observer),
     };
+    if let Some(e) = sink_error {
+        return Err(e);
+    }
     let Some(last) = last else {
         return Err(Error::Solver("the transient run produced no step".into()));
     };
