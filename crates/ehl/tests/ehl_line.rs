@@ -85,10 +85,10 @@ fn reports_honestly_and_never_nan() {
     };
     let (res, _) = solve_line_p(&c, 256, -4.5, 1.5, &par);
     for (name, f) in [
-        ("p", &res.pressure),
-        ("h", &res.film),
-        ("eta", &res.viscosity),
-        ("rho", &res.density),
+        ("p", &res.fields.pressure),
+        ("h", &res.fields.film),
+        ("eta", &res.fields.viscosity),
+        ("rho", &res.fields.density),
     ] {
         assert!(
             f.iter().all(|v| v.is_finite()),
@@ -97,7 +97,7 @@ fn reports_honestly_and_never_nan() {
             &f[..4]
         );
     }
-    assert!(res.residual.is_finite() && res.load_error.is_finite() && res.h0.is_finite());
+    assert!(res.residual.is_finite() && res.load_error.is_finite() && res.fields.h0.is_finite());
     assert!(
         !res.converged && res.termination != "converged",
         "{}",
@@ -127,7 +127,7 @@ fn central_film_against_moes() {
         );
         let (w, u, g) = groups(&c);
         let hm = ehl::reference::film::moes_line_central_film(w, u, g) * c.r;
-        let e = res.film[centre_index(&grid)] / hm - 1.0;
+        let e = res.fields.film[centre_index(&grid)] / hm - 1.0;
         println!(
             "M {m:5} L {l:4}: h_c / Moes = {:.4}  (Newton {}, GMRES {})",
             1.0 + e,
@@ -138,7 +138,7 @@ fn central_film_against_moes() {
         assert!(
             e.abs() < 0.10,
             "M {m} L {l}: {} vs {}",
-            res.film[centre_index(&grid)],
+            res.fields.film[centre_index(&grid)],
             hm
         );
     }
@@ -161,9 +161,9 @@ fn films_against_pan_hamrock() {
         let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
         assert!(res.converged, "M {m} L {l}: {}", res.termination);
         let (w, u, g) = groups(&c);
-        let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
+        let hmin = res.fields.film.iter().cloned().fold(f64::INFINITY, f64::min);
         let rmin = hmin / (ehl::reference::film::pan_hamrock_min(w, u, g) * c.r);
-        let rc = res.film[centre_index(&grid)]
+        let rc = res.fields.film[centre_index(&grid)]
             / (ehl::reference::film::pan_hamrock_central(w, u, g) * c.r);
         println!(
             "M {m:5} L {l:4}: h_min / PH = {rmin:.4}, h_c / PH = {rc:.4}, p_h = {:.2} GPa",
@@ -196,11 +196,11 @@ fn grid_convergence() {
             t.elapsed().as_secs_f64()
         );
         assert!(res.converged, "nx {nx}: {}", res.termination);
-        let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
+        let hmin = res.fields.film.iter().cloned().fold(f64::INFINITY, f64::min);
         // the centre value by linear interpolation between the two cells around x = 0
         let i = (0..grid.nx).find(|&i| grid.x(i) >= 0.0).unwrap();
         let t = -grid.x(i - 1) / grid.dx;
-        let hc = res.film[i - 1] * (1.0 - t) + res.film[i] * t;
+        let hc = res.fields.film[i - 1] * (1.0 - t) + res.fields.film[i] * t;
         println!("nx {nx}: h_c {hc:.5e} h_min {hmin:.5e}");
         hs.push((hc, hmin));
     }

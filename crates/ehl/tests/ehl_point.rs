@@ -67,9 +67,9 @@ fn ball_on_glass_against_ehl_fbns() {
     );
     assert!(res.converged, "{}", res.termination);
     let kc = grid.idx(grid.nx / 2, grid.ny / 2);
-    let hc = res.film[kc];
-    let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
-    let pmax = res.pressure.iter().cloned().fold(0.0, f64::max);
+    let hc = res.fields.film[kc];
+    let hmin = res.fields.film.iter().cloned().fold(f64::INFINITY, f64::min);
+    let pmax = res.fields.pressure.iter().cloned().fold(0.0, f64::max);
     println!(
         "a = {:.1} um: h_c {:.1} nm (225.8), h_min {:.1} nm (125.5), p_max {:.4} GPa (0.388)",
         a * 1e6,
@@ -100,8 +100,8 @@ fn ball_against_hamrock_dowson() {
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
     let hc_ref = ehl::reference::film::hamrock_dowson_central(w, u, g, 1.0) * r;
     let hm_ref = ehl::reference::film::hamrock_dowson_min(w, u, g, 1.0) * r;
-    let hc = res.film[grid.idx(grid.nx / 2, grid.ny / 2)];
-    let hmin = res.film.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hc = res.fields.film[grid.idx(grid.nx / 2, grid.ny / 2)];
+    let hmin = res.fields.film.iter().cloned().fold(f64::INFINITY, f64::min);
     println!(
         "h_c {:.1} nm vs HD {:.1}; h_min {:.1} nm vs HD {:.1}",
         hc * 1e9,
@@ -111,12 +111,12 @@ fn ball_against_hamrock_dowson() {
     );
     assert!((hc / hc_ref - 1.0).abs() < 0.15);
     assert!((hmin / hm_ref - 1.0).abs() < 0.15);
-    let pmax = res.pressure.iter().cloned().fold(0.0, f64::max);
+    let pmax = res.fields.pressure.iter().cloned().fold(0.0, f64::max);
     for j in 0..grid.ny / 2 {
         for i in 0..grid.nx {
             let (a, b) = (
-                res.pressure[grid.idx(i, j)],
-                res.pressure[grid.idx(i, grid.ny - 1 - j)],
+                res.fields.pressure[grid.idx(i, j)],
+                res.fields.pressure[grid.idx(i, grid.ny - 1 - j)],
             );
             assert!(
                 (a - b).abs() < 1e-6 * pmax,
@@ -153,10 +153,10 @@ fn ball_against_mourier_simulation() {
     );
     assert!(res.converged, "{}", res.termination);
     let kc = centre(&grid);
-    let hc = res.film[kc];
+    let hc = res.fields.film[kc];
     let row = kc / grid.nx;
     let hcl = (0..grid.nx)
-        .map(|i| res.film[grid.idx(i, row)])
+        .map(|i| res.fields.film[grid.idx(i, row)])
         .fold(f64::INFINITY, f64::min);
     println!(
         "h_c {:.1} nm (Mourier 210.5), centreline h_min {:.1} nm (Mourier 175.5)",
@@ -184,7 +184,7 @@ fn ball_grid_converged_against_ehl_fbns_extrapolated() {
     let hc = |n: usize| {
         let (res, grid, _a, _p0) = solve_ball(&lub, n, &EhlParams::default());
         assert!(res.converged, "{n}: {}", res.termination);
-        res.film[centre(&grid)]
+        res.fields.film[centre(&grid)]
     };
     let (h1, h2) = (hc(129), hc(257));
     let ext = h2 + (h2 - h1) / 3.0;
@@ -214,7 +214,7 @@ fn ball_barus_incompressible_against_nijenbanning() {
     let (w, u, g) = (f / (e * r * r), eta0 * ue / (e * r), alpha * e);
     let (m, l) = (w * (2.0 * u).powf(-0.75), g * (2.0 * u).powf(0.25));
     let href = ehl::reference::film::nijenbanning_circular_central(m, l) * (2.0 * u).sqrt() * r;
-    let hc = res.film[centre(&grid)];
+    let hc = res.fields.film[centre(&grid)];
     println!(
         "M {m:.2} L {l:.3}: h_c {:.1} nm vs Nijenbanning {:.1} nm (Newton {}, GMRES {})",
         hc * 1e9,

@@ -131,8 +131,8 @@ fn smooth_steady(c: &LineCase, nx: usize, x_range: (f64, f64), srr: f64) -> (Gri
 fn assert_every_step_on(steps: &[StepResult], reference: &StepResult, ph: f64, hc: f64) {
     for s in steps {
         assert!(s.converged, "step {}: {}", s.step, s.reason);
-        let dp = max_abs_diff(&s.pressure, &reference.pressure) / ph;
-        let dh = max_abs_diff(&s.film, &reference.film) / hc;
+        let dp = max_abs_diff(&s.fields.pressure, &reference.fields.pressure) / ph;
+        let dh = max_abs_diff(&s.fields.film, &reference.fields.film) / hc;
         assert!(
             dp < 1e-6 && dh < 1e-6,
             "step {}: dp {dp:e} dh {dh:e}",
@@ -168,7 +168,7 @@ fn smooth_transient_stays_on_the_steady_solution() {
     );
     assert_eq!(steps.len(), 11);
     let s0 = &steps[0];
-    assert_every_step_on(&steps[1..], s0, c.ph, s0.film[128]);
+    assert_every_step_on(&steps[1..], s0, c.ph, s0.fields.film[128]);
 }
 
 /// Film at x = 0 by linear interpolation between the two nearest cell centres.
@@ -186,7 +186,7 @@ fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize, transport: bool) ->
     let c = line(m, l);
     let (xin, xout) = (-4.5, 1.5);
     let (grid, s0) = smooth_steady(&c, nx, (xin, xout), 0.0);
-    let hc = film_at_centre(&grid, &s0.film);
+    let hc = film_at_centre(&grid, &s0.fields.film);
     let ai = 0.05 * hc;
     let lambda = lambda_b * c.b;
     // one cell per step; the start's disturbance travels at u_e from the inlet to the centre
@@ -214,7 +214,7 @@ fn amplitude_ratio(m: f64, l: f64, lambda_b: f64, nx: usize, transport: bool) ->
     );
     let h: Vec<f64> = steps[flush..]
         .iter()
-        .map(|s| film_at_centre(&grid, &s.film))
+        .map(|s| film_at_centre(&grid, &s.fields.film))
         .collect();
     let (lo, hi) = h
         .iter()
@@ -376,7 +376,7 @@ fn zero_depth_groove_reproduces_the_smooth_solution() {
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 0.5);
-    assert_every_step_on(&steps, &smooth, c.ph, smooth.film[nx / 2]);
+    assert_every_step_on(&steps, &smooth, c.ph, smooth.fields.film[nx / 2]);
 }
 
 /// A groove on a body that stands still (SRR = 2: u2 = 0, the groove on body 2) is a steady
@@ -402,10 +402,10 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let s0 = &steps[0];
-    let hc = s0.film[nx / 2];
+    let hc = s0.fields.film[nx / 2];
     // the groove changes the steady film: the identity is not the smooth solution
     let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 2.0);
-    assert!(max_abs_diff(&s0.film, &smooth.film) / hc > 0.05);
+    assert!(max_abs_diff(&s0.fields.film, &smooth.fields.film) / hc > 0.05);
     assert_every_step_on(&steps[1..], s0, c.ph, hc);
 }
 
@@ -518,7 +518,7 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
     let dx = (xout - xin) / nx as f64; // in b
     let u1 = c.ue * (1.0 + 0.5 * srr);
     let (grid, s0) = smooth_steady(&c, nx, (xin, xout), srr);
-    let hc = film_at_centre(&grid, &s0.film);
+    let hc = film_at_centre(&grid, &s0.fields.film);
     // the surface moves one cell per step; the start's disturbance leaves the contact centre
     // after about 3 b / u_e
     let dt = dx * c.b / u1;
@@ -542,7 +542,7 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let xs: Vec<f64> = (0..nx).map(|i| grid.x(i) / c.b).collect();
     let dh =
-        |s: &StepResult| -> Vec<f64> { s.film.iter().zip(&s0.film).map(|(a, b)| a - b).collect() };
+        |s: &StepResult| -> Vec<f64> { s.fields.film.iter().zip(&s0.fields.film).map(|(a, b)| a - b).collect() };
     let (ha, hb) = (dh(&steps[flush]), dh(&steps[flush + lag]));
     let lam = dominant_wavelength(&xs, &hb, (-0.8, 0.8));
     let r = ((-0.6 - xin) / dx) as usize..((0.6 - xin) / dx) as usize;

@@ -112,21 +112,70 @@ impl Default for EhlParams {
     }
 }
 
-/// The steady solution (SI) and how it was reached.
+/// The fields of a solved EHL state, in SI units: what a steady solve ([`EhlResult`]) and a
+/// time step ([`StepResult`]) both give.
 #[derive(Debug, Clone)]
-pub struct EhlResult {
+pub struct SolvedFields {
     /// Pa
     pub pressure: Vec<f64>,
     /// m (f64::INFINITY on cells without material)
     pub film: Vec<f64>,
     /// m (both bodies, positive opening the gap)
     pub deflection: Vec<f64>,
-    /// Pa s
+    /// Pa s (f64::MAX where the viscosity law overflows)
     pub viscosity: Vec<f64>,
     /// kg/m^3
     pub density: Vec<f64>,
-    /// m
+    /// m: the rigid-body film constant
     pub h0: f64,
+}
+
+impl SolvedFields {
+    /// The fields of the evaluated state `st` of `sys`, scaled back to SI: p p_h, h b^2/R (`hs`;
+    /// infinite where there is no material), the deflection likewise, and the isothermal laws
+    /// of `lub` at each cell's pressure (a thermal run overwrites viscosity and density with
+    /// its temperatures', [`crate::thermal::ThermalContact::fill_laws`]).
+    fn of(sys: &System, st: &State, ph: f64, hs: f64, lub: &Lubricant) -> Self {
+        let n = st.p.len();
+        SolvedFields {
+            pressure: st.p.iter().map(|p| p * ph).collect(),
+            film: (0..n)
+                .map(|k| {
+                    if sys.active[k] {
+                        st.h[k] * hs
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect(),
+            deflection: st.def.iter().map(|d| d * hs).collect(),
+            viscosity: st
+                .p
+                .iter()
+                .map(|&p| {
+                    let v = lub.viscosity * sys.phys.eta(p);
+                    if v.is_finite() {
+                        v
+                    } else {
+                        f64::MAX
+                    }
+                })
+                .collect(),
+            density: st
+                .p
+                .iter()
+                .map(|&p| lub.density * sys.phys.rho(p))
+                .collect(),
+            h0: st.h0 * hs,
+        }
+    }
+}
+
+/// The steady solution (SI) and how it was reached.
+#[derive(Debug, Clone)]
+pub struct EhlResult {
+    /// pressure, film, deflection, viscosity, density, h0
+    pub fields: SolvedFields,
     /// Newton steps (all continuation stages)
     pub iterations: usize,
     /// GMRES iterations (all Newton steps)
@@ -135,8 +184,6 @@ pub struct EhlResult {
     pub operator_applications: usize,
     /// Newton runs: grid-sequencing levels and continuation stages (1 = a single run)
     pub continuation_stages: usize,
-    /// operator applications as f64 (kept for callers of the earlier multigrid driver)
-    pub work_units: f64,
     /// relative mass imbalance ||min(P/c, F)||_2 / ||d(rho H)/dX||_2 over cells with material
     /// (F the discrete Reynolds residual, c its local diagonal scaling; see `ehl::system`)
     pub residual: f64,
@@ -1207,36 +1254,13 @@ fn finish(
     let lub = problem.lubricant;
     let hs = b * b / r;
     sys.eval(&mut st);
-    let n = st.p.len();
     let fin = |v: f64| if v.is_finite() { v } else { f64::MAX };
     let mut out = EhlResult {
-        pressure: st.p.iter().map(|p| p * ph).collect(),
-        film: (0..n)
-            .map(|k| {
-                if sys.active[k] {
-                    st.h[k] * hs
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .collect(),
-        deflection: st.def.iter().map(|d| d * hs).collect(),
-        viscosity: st
-            .p
-            .iter()
-            .map(|&p| fin(lub.viscosity * sys.phys.eta(p)))
-            .collect(),
-        density: st
-            .p
-            .iter()
-            .map(|&p| lub.density * sys.phys.rho(p))
-            .collect(),
-        h0: st.h0 * hs,
+        fields: SolvedFields::of(sys, &st, ph, hs, lub),
         iterations: stats.newton,
         linear_iterations: stats.gmres,
         operator_applications: sys.applies + stats.applies,
         continuation_stages: stats.stages,
-        work_units: (sys.applies + stats.applies) as f64,
         residual: fin(end.residual),
         load_error: fin(end.load_error),
         converged: end.converged,

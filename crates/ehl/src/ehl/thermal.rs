@@ -207,12 +207,12 @@ fn run(
     let mut st = State::new(n);
     for k in 0..n {
         st.p[k] = if sys.active[k] {
-            start.pressure[k] / ph
+            start.fields.pressure[k] / ph
         } else {
             0.0
         };
     }
-    st.h0 = start.h0 / hs;
+    st.h0 = start.fields.h0 / hs;
     let mut factors = ThermalFactors {
         flow: vec![1.0; n],
         couette: vec![1.0; n],
@@ -379,10 +379,10 @@ fn run(
     }
     let mut ehl = finish(problem, &mut sys, st, end, &stats);
     contact.fill_laws(
-        &ehl.pressure,
+        &ehl.fields.pressure,
         &sys.active,
-        &mut ehl.viscosity,
-        &mut ehl.density,
+        &mut ehl.fields.viscosity,
+        &mut ehl.fields.density,
     );
     ThermalResult {
         ehl,

@@ -45,7 +45,7 @@
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
-    better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, Stats,
+    better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, SolvedFields, Stats,
     Termination,
 };
 use crate::geometry::{GapSampler, GapWithFeatures};
@@ -167,18 +167,8 @@ pub struct StepResult {
     pub step: usize,
     /// s
     pub time: f64,
-    /// Pa
-    pub pressure: Vec<f64>,
-    /// m (f64::INFINITY where a body has no material)
-    pub film: Vec<f64>,
-    /// m
-    pub deflection: Vec<f64>,
-    /// Pa s
-    pub viscosity: Vec<f64>,
-    /// kg/m^3
-    pub density: Vec<f64>,
-    /// m
-    pub h0: f64,
+    /// pressure, film, deflection, viscosity, density, h0
+    pub fields: SolvedFields,
     pub converged: bool,
     /// why the step's Newton solve stopped (its `Display` is the sentence of `summary.json`)
     pub reason: Termination,
@@ -355,22 +345,17 @@ fn run(
     let mut st = State::new(n);
     for k in 0..n {
         st.p[k] = if sys.active[k] {
-            steady.pressure[k] / ph
+            steady.fields.pressure[k] / ph
         } else {
             0.0
         };
     }
-    st.h0 = steady.h0 / hs;
+    st.h0 = steady.fields.h0 / hs;
     sys.eval(&mut st);
     let mut start = StepResult {
         step: 0,
         time: 0.0,
-        pressure: steady.pressure.clone(),
-        film: steady.film.clone(),
-        deflection: steady.deflection.clone(),
-        viscosity: steady.viscosity.clone(),
-        density: steady.density.clone(),
-        h0: steady.h0,
+        fields: steady.fields.clone(),
         converged: steady.converged,
         reason: steady.reason.clone(),
         residual: steady.residual,
@@ -392,7 +377,7 @@ fn run(
     if let Some((_, contact)) = thermal.as_mut() {
         if contact.solved() {
             contact.reynolds_factors(
-                &start.pressure,
+                &start.fields.pressure,
                 &sys.active,
                 &mut factors.flow,
                 &mut factors.couette,
@@ -568,35 +553,7 @@ fn run(
         let mut res = StepResult {
             step,
             time: t,
-            pressure: st.p.iter().map(|p| p * ph).collect(),
-            film: (0..n)
-                .map(|k| {
-                    if sys.active[k] {
-                        st.h[k] * hs
-                    } else {
-                        f64::INFINITY
-                    }
-                })
-                .collect(),
-            deflection: st.def.iter().map(|d| d * hs).collect(),
-            viscosity: st
-                .p
-                .iter()
-                .map(|&p| {
-                    let v = lub.viscosity * sys.phys.eta(p);
-                    if v.is_finite() {
-                        v
-                    } else {
-                        f64::MAX
-                    }
-                })
-                .collect(),
-            density: st
-                .p
-                .iter()
-                .map(|&p| lub.density * sys.phys.rho(p))
-                .collect(),
-            h0: st.h0 * hs,
+            fields: SolvedFields::of(&sys, &st, ph, hs, lub),
             converged: end.converged,
             reason: end.reason,
             residual: end.residual,
@@ -610,10 +567,10 @@ fn run(
         };
         if let Some((_, contact)) = thermal.as_ref().filter(|(_, c)| c.solved()) {
             contact.fill_laws(
-                &res.pressure,
+                &res.fields.pressure,
                 &sys.active,
-                &mut res.viscosity,
-                &mut res.density,
+                &mut res.fields.viscosity,
+                &mut res.fields.density,
             );
         }
         if observer(&res).is_break() {

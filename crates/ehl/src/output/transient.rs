@@ -674,7 +674,9 @@ pub fn crop_y(solution: &Solution, y0: f64, y1: f64) -> Option<Solution> {
 
 /// [`fmt_sig`], with 0 written `0`.
 fn fmt_sig_or_zero(v: f64, sig: usize) -> String {
-    if v == 0.0 {
+    // a position reached by summing steps is zero only to round-off (x_p = -1.6 mm + 120 x
+    // 3.2/240 mm is ~1e-16 mm): 1e-9 of the display unit is zero
+    if v.abs() < 1e-9 {
         "0".into()
     } else {
         fmt_sig(v, sig)

@@ -847,7 +847,7 @@ fn solve_ehl(
     summary.iterations = r.iterations;
     // the EHL solver writes f64::MAX for a residual it could not evaluate: leave it out
     summary.residual = (r.residual.is_finite() && r.residual < f64::MAX).then_some(r.residual);
-    ehl_figures(&mut summary, &grid, &r.pressure, &r.film, load);
+    ehl_figures(&mut summary, &grid, &r.fields.pressure, &r.fields.film, load);
     summary.mass_inflow_kg_s = Some(r.inflow);
     summary.mass_outflow_kg_s = Some(r.outflow);
     summary.side_leakage_kg_s = Some(r.side_leakage);
@@ -870,9 +870,9 @@ fn solve_ehl(
             &mut summary,
             &crate::friction::FrictionInput {
                 grid: &grid,
-                pressure: &r.pressure,
-                film: &r.film,
-                viscosity: &r.viscosity,
+                pressure: &r.fields.pressure,
+                film: &r.fields.film,
+                viscosity: &r.fields.viscosity,
                 u1: motion.u1(),
                 u2: motion.u2(),
                 rheology: &lubricant.rheology,
@@ -885,11 +885,11 @@ fn solve_ehl(
         temperature: thermal_run.filter(|t| t.contact.solved()).map(|t| t.fields),
         grid,
         fields: Fields {
-            pressure: r.pressure,
-            deformation: r.deflection,
-            film: Some(r.film),
-            viscosity: Some(r.viscosity),
-            density: Some(r.density),
+            pressure: r.fields.pressure,
+            deformation: r.fields.deflection,
+            film: Some(r.fields.film),
+            viscosity: Some(r.fields.viscosity),
+            density: Some(r.fields.density),
         },
         summary,
         transient: None,

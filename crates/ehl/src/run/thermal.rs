@@ -59,7 +59,7 @@ pub fn solve(
     if let Some(hint) = loading_hint(case, result.ehl.converged, &result.ehl.termination) {
         result.ehl.termination.push_str(&hint);
     }
-    let fields = contact.fields(&result.ehl.film);
+    let fields = contact.fields(&result.ehl.fields.film);
     let friction_force = contact.friction_force();
     Ok(ThermalRun {
         result,

@@ -249,9 +249,9 @@ pub(super) fn solve(
         } else if s.converged {
             match crate::friction::friction(&crate::friction::FrictionInput {
                 grid: &grid,
-                pressure: &s.pressure,
-                film: &s.film,
-                viscosity: &s.viscosity,
+                pressure: &s.fields.pressure,
+                film: &s.fields.film,
+                viscosity: &s.fields.viscosity,
                 u1: motion.u1(),
                 u2: motion.u2(),
                 rheology: &lubricant.rheology,
@@ -270,12 +270,12 @@ pub(super) fn solve(
             None
         };
         let min_film = s
-            .film
+            .fields.film
             .iter()
             .cloned()
             .filter(|h| h.is_finite())
             .fold(f64::INFINITY, f64::min);
-        let max_p = s.pressure.iter().cloned().fold(0.0f64, f64::max);
+        let max_p = s.fields.pressure.iter().cloned().fold(0.0f64, f64::max);
         let row = StepRecord {
             step: s.step,
             time_s: s.time,
@@ -286,7 +286,7 @@ pub(super) fn solve(
             } else {
                 0.0
             },
-            central_film_m: film_at(&grid, &s.film, 0.0, 0.0).map_or(0.0, |h| h.max(0.0)),
+            central_film_m: film_at(&grid, &s.fields.film, 0.0, 0.0).map_or(0.0, |h| h.max(0.0)),
             friction_coefficient: friction,
             centerline_min_film_m: {
                 let jc = if grid.ny == 1 {
@@ -294,7 +294,7 @@ pub(super) fn solve(
                 } else {
                     ((-grid.y_min / grid.dy - 0.5).round().max(0.0) as usize).min(grid.ny - 1)
                 };
-                let m = s.film[jc * grid.nx..(jc + 1) * grid.nx]
+                let m = s.fields.film[jc * grid.nx..(jc + 1) * grid.nx]
                     .iter()
                     .cloned()
                     .filter(|h| h.is_finite())
@@ -305,9 +305,9 @@ pub(super) fn solve(
                     0.0
                 }
             },
-            load_error: s.pressure.iter().sum::<f64>() * area / ctx.load - 1.0,
+            load_error: s.fields.pressure.iter().sum::<f64>() * area / ctx.load - 1.0,
             converged: s.converged,
-            h0_m: s.h0,
+            h0_m: s.fields.h0,
             newton_iterations: s.newton_iterations,
             linear_iterations: s.linear_iterations,
             operator_applications: s.operator_applications,
@@ -331,8 +331,8 @@ pub(super) fn solve(
             step: s.step,
             time_s: s.time,
             x_p_m: x_p,
-            pressure: s.pressure.clone(),
-            film: s.film.iter().map(|&h| h.max(0.0)).collect(),
+            pressure: s.fields.pressure.clone(),
+            film: s.fields.film.iter().map(|&h| h.max(0.0)).collect(),
         });
         match sink.step(&row, frame.as_ref()) {
             Ok(keep) => {
@@ -354,9 +354,9 @@ pub(super) fn solve(
                 steps,
                 s.time,
                 s.converged,
-                &s.pressure,
-                &s.film,
-                &s.viscosity,
+                &s.fields.pressure,
+                &s.fields.film,
+                &s.fields.viscosity,
             );
         }
         for &(x, k) in &snapshot_steps {
@@ -399,7 +399,7 @@ pub(super) fn solve(
         .map(|r| r.step)
         .collect();
     // the last step's figures
-    super::ehl_figures(&mut summary, &grid, &last.pressure, &last.film, ctx.load);
+    super::ehl_figures(&mut summary, &grid, &last.fields.pressure, &last.fields.film, ctx.load);
     summary.residual =
         (last.residual.is_finite() && last.residual < f64::MAX).then_some(last.residual);
     summary.mass_inflow_kg_s = Some(last.mass.inflow);
@@ -496,7 +496,7 @@ pub(super) fn solve(
     // [thermal]: the last step's temperatures and heat, and the extremes over the travel
     let mut temperature = None;
     if let Some(c) = contact.as_ref().filter(|c| c.solved()) {
-        let fields = c.fields(&last.film);
+        let fields = c.fields(&last.fields.film);
         let outer = record
             .timeline
             .first()
@@ -557,11 +557,11 @@ pub(super) fn solve(
 /// The output fields of a step.
 fn fields_of(s: &StepResult) -> Fields {
     Fields {
-        pressure: s.pressure.clone(),
-        deformation: s.deflection.clone(),
-        film: Some(s.film.clone()),
-        viscosity: Some(s.viscosity.clone()),
-        density: Some(s.density.clone()),
+        pressure: s.fields.pressure.clone(),
+        deformation: s.fields.deflection.clone(),
+        film: Some(s.fields.film.clone()),
+        viscosity: Some(s.fields.viscosity.clone()),
+        density: Some(s.fields.density.clone()),
     }
 }
 
