@@ -270,7 +270,8 @@ pub(super) fn solve(
             None
         };
         let min_film = s
-            .fields.film
+            .fields
+            .film
             .iter()
             .cloned()
             .filter(|h| h.is_finite())
