@@ -264,3 +264,32 @@ fn invalid_inputs_are_typed_errors() {
     bad.viscosity = &big_eta;
     assert!(friction(&bad).is_err());
 }
+
+/// A friction coefficient no lubricated contact shows is said in the summary: the thesis Table
+/// 3.7 line made Newtonian at SRR 0.5 and G = 5000 gives f ~ 356 and a warning naming the
+/// rheology; the example's Carreau oil with its limiting shear stress gives 0.011 and none.
+#[test]
+fn an_unphysical_friction_coefficient_is_warned() {
+    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
+    let solve = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
+        ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
+    };
+    let s = solve(&[
+        "grid.nx=128",
+        "lubricant.rheology={model=\"newtonian\"}",
+        "motion.slide_to_roll=0.5",
+        "lubricant.dimensionless_material=5000",
+    ]);
+    let f = s.friction_coefficient.unwrap();
+    assert!(f > ehl::run::FRICTION_WARNING, "{f}");
+    assert!(
+        s.warnings.iter().any(|w| w.contains("friction coefficient") && w.contains("Newtonian")),
+        "{:?}",
+        s.warnings
+    );
+    let s = solve(&["grid.nx=128"]);
+    assert!(s.friction_coefficient.unwrap() < 0.05);
+    assert!(!s.warnings.iter().any(|w| w.contains("friction coefficient")), "{:?}", s.warnings);
+}

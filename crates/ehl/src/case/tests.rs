@@ -291,6 +291,21 @@ fn dimensionless_speed_and_material() {
     ));
 }
 
+/// The documented ends of U, 1e-16 and 1e-7, are accepted when given as dimensionless_speed
+/// (the round trip through u_e cost 1e-16 at the lower end, which was refused); a little
+/// beyond either end is refused, naming the key.
+#[test]
+fn the_ends_of_the_speed_range_are_accepted() {
+    for u in ["1e-16", "1e-7"] {
+        let c = parse(EHL, &[&format!("motion={{ dimensionless_speed = {u} }}")]);
+        assert!(c.is_ok(), "U = {u}: {:?}", c.err());
+    }
+    for u in ["0.99e-16", "1.01e-7"] {
+        let (k, _) = err(EHL, &[&format!("motion={{ dimensionless_speed = {u} }}")]);
+        assert_eq!(k, "motion.dimensionless_speed", "U = {u}");
+    }
+}
+
 #[test]
 fn overrides_apply_before_validation() {
     // a bad value in the file is fixed by --set

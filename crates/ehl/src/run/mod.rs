@@ -472,6 +472,7 @@ pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink)
     solution.summary.friction_requested = friction_requested(case);
     clamp_negative_film(&mut solution);
     edge_pressure_warnings(case, &geometry, &mut solution);
+    friction_warning(case, &mut solution.summary);
     add_stress(case, &mut solution, progress)?;
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
     progress.report(1.0, "done");
@@ -671,6 +672,42 @@ pub const EDGE_PRESSURE_FRACTION: f64 = 0.1;
 /// [`EDGE_PRESSURE_FRACTION`]). A y edge that lies at a roller's free end (within one cell) is
 /// not checked: the pressure legitimately peaks there, and the grid's default y range is the
 /// rollers' axial extent.
+/// Largest friction coefficient of a lubricated contact `ehl` reports without a warning:
+/// measured EHL traction stays below about 0.1 (traction fluids about 0.12; Johnson & Tevaarwerk
+/// 1977, Evans & Johnson 1986); beyond that the model has left its ground.
+pub const FRICTION_WARNING: f64 = 0.2;
+
+/// A warning when the friction coefficient (the last step's, or any over the travel) exceeds
+/// [`FRICTION_WARNING`]: an isothermal Newtonian film, or one without a limiting shear stress,
+/// turns the viscosity of ~1 GPa into shear stresses no oil carries (the thesis' own rheology
+/// is Carreau with the limit of eq. 2.14-2.15).
+fn friction_warning(case: &Case, s: &mut Summary) {
+    let worst = s
+        .friction_coefficient_over_travel
+        .map(|[lo, hi]| lo.abs().max(hi.abs()))
+        .into_iter()
+        .chain(s.friction_coefficient.map(f64::abs))
+        .fold(0.0f64, f64::max);
+    if !(worst > FRICTION_WARNING) {
+        return;
+    }
+    let (newtonian, limited) = match case.lubricant.as_ref().map(|l| &l.rheology) {
+        Some(crate::lubricant::Rheology::Newtonian) | None => (true, false),
+        Some(r) => (false, crate::lubricant::rheology::limiting_shear_stress(r, 1.0).is_some()),
+    };
+    let why = if newtonian {
+        "the lubricant is Newtonian: at the contact's pressure its viscosity gives shear stresses no oil carries; give lubricant.rheology a non-Newtonian model with a limiting shear stress (Carreau or Eyring with limiting_shear_coefficient) or add [thermal]"
+    } else if !limited {
+        "the rheology has no limiting shear stress: give lubricant.rheology a limiting_shear_coefficient (0.04-0.08 for mineral oils; thesis eq. 2.14) or add [thermal]"
+    } else {
+        "check the rheology's parameters and the slide-to-roll ratio, or add [thermal] (sliding heats the film and lowers the traction)"
+    };
+    s.warnings.push(format!(
+        "friction coefficient {:.3} exceeds {FRICTION_WARNING}, more than lubricated contacts show (EHL traction stays below about 0.1): {why}",
+        worst
+    ));
+}
+
 fn edge_pressure_warnings(case: &Case, geometry: &Geometry, s: &mut Solution) {
     let g = s.grid;
     let p = &s.fields.pressure;

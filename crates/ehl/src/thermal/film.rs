@@ -167,21 +167,27 @@ impl OilThermal {
     }
 }
 
+/// Values at the points across the film: on the stack up to 16 points (the default is 7, the
+/// retry 11; at most 33 are allowed), since a profile is formed once per column per film
+/// iteration and its small heap vectors were ~6 % of a thermal transient run (perf, the thesis
+/// pit at 128 x 128).
+pub type PointValues = smallvec::SmallVec<[f64; 16]>;
+
 /// The velocity and stress profile of one film column and its generalized Reynolds
 /// coefficients (see the module documentation). Point values are at the rule's points
 /// zeta_k, k = 0..nz.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FilmProfile {
     /// u(z_k) (m/s)
-    pub u: Vec<f64>,
+    pub u: PointValues,
     /// v(z_k) (m/s)
-    pub v: Vec<f64>,
+    pub v: PointValues,
     /// tau_zx(z_k) = tau_a + z_k dp/dx (Pa)
-    pub tau_zx: Vec<f64>,
+    pub tau_zx: PointValues,
     /// tau_zy(z_k) (Pa)
-    pub tau_zy: Vec<f64>,
+    pub tau_zy: PointValues,
     /// shear heating tau_zx du/dz + tau_zy dv/dz = |tau|^2 / eta (W/m^3)
-    pub heating: Vec<f64>,
+    pub heating: PointValues,
     /// F0 = int_0^h dz / eta (m/(Pa s))
     pub f0: f64,
     /// F1 = int_0^h z dz / eta (m^2/(Pa s))
@@ -306,10 +312,10 @@ pub fn velocity_profile(
     check_points(rule, "density", rho)?;
     let n = rule.len();
     let h = col.h;
-    let inv: Vec<f64> = eta.iter().map(|e| 1.0 / e).collect();
-    let zinv: Vec<f64> = inv.iter().zip(&rule.points).map(|(a, z)| a * z).collect();
-    let mut i0 = vec![0.0; n];
-    let mut i1 = vec![0.0; n];
+    let inv: PointValues = eta.iter().map(|e| 1.0 / e).collect();
+    let zinv: PointValues = inv.iter().zip(&rule.points).map(|(a, z)| a * z).collect();
+    let mut i0: PointValues = smallvec::smallvec![0.0; n];
+    let mut i1: PointValues = smallvec::smallvec![0.0; n];
     rule.apply(&rule.cumulative, &inv, &mut i0);
     rule.apply(&rule.cumulative, &zinv, &mut i1);
     i0.iter_mut().for_each(|v| *v *= h);
@@ -317,16 +323,16 @@ pub fn velocity_profile(
     let (f0, f1) = (i0[n - 1], i1[n - 1]);
     let tau_a = (col.u2 - col.u1 - col.dpdx * f1) / f0;
     let tau_b = -col.dpdy * f1 / f0;
-    let u: Vec<f64> = (0..n)
+    let u: PointValues = (0..n)
         .map(|k| col.u1 + tau_a * i0[k] + col.dpdx * i1[k])
         .collect();
-    let v: Vec<f64> = (0..n).map(|k| tau_b * i0[k] + col.dpdy * i1[k]).collect();
-    let tau_zx: Vec<f64> = rule
+    let v: PointValues = (0..n).map(|k| tau_b * i0[k] + col.dpdy * i1[k]).collect();
+    let tau_zx: PointValues = rule
         .points
         .iter()
         .map(|z| tau_a + h * z * col.dpdx)
         .collect();
-    let tau_zy: Vec<f64> = rule
+    let tau_zy: PointValues = rule
         .points
         .iter()
         .map(|z| tau_b + h * z * col.dpdy)
@@ -395,7 +401,7 @@ impl Default for ShearOptions {
 pub struct ShearThinningProfile {
     pub profile: FilmProfile,
     /// effective viscosity at the points (Pa s)
-    pub eta_eff: Vec<f64>,
+    pub eta_eff: PointValues,
     /// Newton iterations done (0: the law is Newtonian at this state)
     pub iterations: usize,
     /// final max_k |ln eta_eff,k - ln eta_law(gamma_k)|
@@ -456,10 +462,10 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     }
     let n = rule.len();
     let h = col.h;
-    // every per-point vector in one allocation: this runs once per film column per film
-    // iteration, and its ~15 small vectors were 11 % of a thermal transient run (perf, the
-    // thesis pit at 128 x 128)
-    let mut work = vec![0.0; 16 * n];
+    // every per-point vector in one buffer, on the stack up to 16 points: this runs once per
+    // film column per film iteration, and its ~15 small vectors were 11 % of a thermal
+    // transient run (perf, the thesis pit at 128 x 128)
+    let mut work: smallvec::SmallVec<[f64; 16 * 16]> = smallvec::smallvec![0.0; 16 * n];
     let (ln_eta, rest) = work.split_at_mut(n);
     let (eta_eff, rest) = rest.split_at_mut(n);
     let (mut y, rest) = rest.split_at_mut(n);
@@ -555,7 +561,7 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     let profile = velocity_profile(rule, col, eta_eff, rho)?;
     Ok(ShearThinningProfile {
         profile,
-        eta_eff: eta_eff.to_vec(),
+        eta_eff: PointValues::from_slice(eta_eff),
         iterations,
         residual: res,
         converged: res <= opts.tol,
