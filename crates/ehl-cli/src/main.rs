@@ -214,8 +214,9 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     // the output only once every file is written
     let transient = case.kind == ehl::case::Kind::Ehl && ehl::run::transient::kinematics(&case).is_some();
     if transient {
-        let staging = ehl::output::Staging::begin(&dir)?;
-        let mut stream = ehl::output::stream::TransientStream::new(staging.path(), &case);
+        // the folder the lock resolved (`--out .` names the current folder by its name)
+        let staging = ehl::output::Staging::begin(lock.dir())?;
+        let mut stream = ehl::output::stream::TransientStream::new(&staging, &case);
         let solution = ehl::run::solve_with(&case, &bar, &mut stream);
         bar.finish();
         let solution = solution?;

@@ -323,6 +323,29 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
     assert!(w.file("empty/summary.json").is_file());
 }
 
+/// A transient run (which streams its files into the output's temporary folder while it
+/// solves) writes into `--out .` when `.` is an ehl output folder, as a steady run does: the
+/// temporary folder sits beside the folder `.` names.
+#[test]
+fn a_streamed_transient_run_writes_into_out_dot() {
+    let text = std::fs::read_to_string(examples().join("ehl_transient_line_groove.toml")).unwrap();
+    let w = Work::new(&edit(
+        &edit(&text, "travel =", "travel = { from = -1.2e-3, to = 1.0e-3, steps = 20 }"),
+        "nx =",
+        "nx = 128",
+    ));
+    let o = w.ehl(&["run", "case.toml", "--out", "res", "-q"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let o = Command::new(env!("CARGO_BIN_EXE_ehl"))
+        .args(["run", "../case.toml", "--out", ".", "-q"])
+        .current_dir(w.file("res"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(w.file("res/timeline.csv").is_file() && w.file("res/frames.npz").is_file());
+    assert_eq!(names(w.path()), ["case.toml", "res"]);
+}
+
 /// A sweep refuses, before solving, a point folder holding the user's files; the sweep folder
 /// itself may hold other files (it is never replaced).
 #[test]

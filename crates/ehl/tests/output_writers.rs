@@ -459,7 +459,7 @@ fn streamed_equals_in_memory(example: &str, sets: &[&str]) {
     let root = tempfile::tempdir().unwrap();
     let (a, b) = (root.path().join("streamed"), root.path().join("in-memory"));
     let staging = ehl::output::Staging::begin(&a).unwrap();
-    let mut stream = ehl::output::stream::TransientStream::new(staging.path(), &case).keeping_frames();
+    let mut stream = ehl::output::stream::TransientStream::new(&staging, &case).keeping_frames();
     let sol = ehl::run::solve_with(&case, &ehl::run::Silent, &mut stream).unwrap();
     let kept = sol.transient.as_ref().unwrap().frames.len();
     ehl::output::write_staged(staging, &case, &sol, Some(stream)).unwrap();

@@ -715,6 +715,11 @@ impl Staging {
         &self.tmp
     }
 
+    /// The output folder it will replace (for messages).
+    pub fn target(&self) -> &Path {
+        &self.dir
+    }
+
     /// Replaces `dir` by the filled folder (see [`replace_dir`]); on an error the temporary
     /// folder is removed and `dir` is as it was.
     pub fn commit(mut self) -> Result<()> {

@@ -53,7 +53,10 @@ struct FrameMeta {
 /// The [`StepSink`] that writes a transient run's per-step outputs into a staging folder as
 /// the run goes (see the module documentation).
 pub struct TransientStream {
+    /// the staging folder the files go into
     dir: PathBuf,
+    /// the output folder it becomes, which messages name
+    out: PathBuf,
     case: Case,
     grid: Option<Grid>,
     /// the rows of the zoom window of the pictures (`j0 ..= j1`), or the whole grid
@@ -67,10 +70,11 @@ pub struct TransientStream {
 }
 
 impl TransientStream {
-    /// A stream into the staging folder `dir` (see [`super::Staging::path`]) for `case`.
-    pub fn new(dir: &Path, case: &Case) -> Self {
+    /// A stream into the folder of `staging` for `case`.
+    pub fn new(staging: &super::Staging, case: &Case) -> Self {
         TransientStream {
-            dir: dir.to_path_buf(),
+            dir: staging.path().to_path_buf(),
+            out: staging.target().to_path_buf(),
             case: case.clone(),
             grid: None,
             rows: (0, 0),
@@ -94,7 +98,13 @@ impl TransientStream {
     /// the stream was made for) from `solution` (its timeline and snapshots; its frames are not
     /// read), then removes the spill files. `solution.transient` must be the run's record.
     pub fn finish(mut self, dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
+        let spills: Vec<PathBuf> = SPILL.iter().map(|n| self.dir.join(n)).collect();
         let Some(t) = &solution.transient else {
+            // not a transient solution: nothing of the stream belongs in the output
+            self.spill.clear();
+            for p in &spills {
+                let _ = std::fs::remove_file(p);
+            }
             return Ok(());
         };
         let g = solution.grid;
@@ -107,11 +117,10 @@ impl TransientStream {
         if timeline_is_thermal(t) != self.thermal || self.grid.is_none() {
             write_timeline_csv(&path, t)?;
         }
-        for w in &mut self.spill {
-            w.flush().map_err(|e| io_err(dir, e))?;
+        for (w, p) in self.spill.iter_mut().zip(&spills) {
+            w.flush().map_err(|e| io_err(p, e))?;
         }
         self.spill.clear();
-        let spills: Vec<PathBuf> = SPILL.iter().map(|n| dir.join(n)).collect();
         let result = self.write_rest(dir, case, solution, t, &g, &spills);
         for p in &spills {
             let _ = std::fs::remove_file(p);
@@ -144,7 +153,7 @@ impl TransientStream {
                     path: spill.clone(),
                     shape: vec![k, g.ny, g.nx],
                 };
-                npz.add(name, &a)?;
+                npz.add_sized(name, &a, (8 * k * n) as u64)?;
             }
             npz.finish()?;
         }
@@ -242,6 +251,9 @@ impl TransientStream {
 
 impl StepSink for TransientStream {
     fn begin(&mut self, grid: &Grid, thermal: bool) -> Result<()> {
+        if super::aborting() {
+            return Err(Error::Cancelled);
+        }
         self.grid = Some(*grid);
         self.thermal = thermal;
         self.rows = zoom_window(&self.case, grid)
@@ -257,8 +269,10 @@ impl StepSink for TransientStream {
             let f = File::create(&path).map_err(|e| io_err(&path, e))?;
             self.spill.push(BufWriter::with_capacity(1 << 20, f));
         }
+        // create_dir, not create_dir_all: were the staging folder removed meanwhile (Ctrl-C),
+        // this fails rather than make it again
         let folder = self.dir.join(FRAMES_DIR);
-        std::fs::create_dir_all(&folder).map_err(|e| io_err(&folder, e))
+        std::fs::create_dir(&folder).map_err(|e| io_err(&folder, e))
     }
 
     fn step(&mut self, row: &StepRecord, frame: Option<&Frame>) -> Result<bool> {
@@ -277,7 +291,7 @@ impl StepSink for TransientStream {
             return Ok(self.keep);
         };
         let out = |m: String| Error::Output {
-            path: self.dir.join(FRAMES_NPZ),
+            path: self.out.clone(),
             message: m,
         };
         validate_frame(&g, f).map_err(out)?;

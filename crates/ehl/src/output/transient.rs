@@ -366,7 +366,7 @@ pub fn write_frames_npz(path: &Path, grid: &Grid, t: &TransientRecord) -> Result
         }
         let a = Array3::from_shape_vec((k, grid.ny, grid.nx), v)
             .map_err(|e| npz.err(format!("field `{name}`: {e}")))?;
-        npz.add(name, &a)?;
+        npz.add_sized(name, &a, (8 * k * n) as u64)?;
     }
     npz.finish()
 }

@@ -101,7 +101,8 @@ pub struct TransientCheck {
     pub cells_per_step: (f64, f64),
     /// [`steps_for_one_cell`]: Some when the step is coarse (a note)
     pub steps_for_one_cell: Option<usize>,
-    /// `output.frames_every` used (the case's or the memory-bounded choice) and the frames' bytes
+    /// `output.frames_every` `ehl run` uses (the case's, else every step; memory-bounded with
+    /// `[stress]`: [`crate::run::transient::frames_every_streamed`]) and the frames' bytes
     pub frames_every: usize,
     pub frames_bytes: f64,
 }
@@ -164,7 +165,11 @@ pub fn check_report(case: &Case) -> CheckReport {
     };
     if let (Some(kin), Some(m)) = (crate::run::transient::kinematics(case), &case.motion) {
         let est = crate::run::memory_estimate(case);
-        let k = crate::run::transient::frames_every(case, crate::run::memory_limit().0 - est.bytes);
+        // what `ehl run` keeps: it streams the frames to disk
+        let k = crate::run::transient::frames_every_streamed(
+            case,
+            crate::run::memory_limit().0 - est.bytes,
+        );
         report.transient = Some(TransientCheck {
             steps: kin.steps,
             dt: kin.dt,
@@ -420,7 +425,7 @@ impl fmt::Display for CheckReport {
                 f,
                 "frames kept",
                 format!(
-                    "every {} step(s), {:.1} MB",
+                    "every {} step(s), {:.1} MB (ehl run writes them to disk as it goes)",
                     t.frames_every,
                     t.frames_bytes / 1e6
                 ),

@@ -439,7 +439,9 @@ pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink)
         Kind::Ehl => match kin {
             Some(kin) => {
                 let est = memory_estimate(case);
-                let budget = if sink.frames_in_memory() {
+                // frames that go to disk need no memory, unless the run keeps them all the same
+                // (`[stress]`: its worst-frame analysis reads them after the run)
+                let budget = if sink.frames_in_memory() || case.stress.is_some() {
                     memory_limit().0 - est.bytes
                 } else {
                     f64::INFINITY
@@ -668,10 +670,6 @@ fn clamp_negative_film(s: &mut Solution) {
 /// off by the domain. A domain that contains the contact has (numerically) zero pressure there.
 pub const EDGE_PRESSURE_FRACTION: f64 = 0.1;
 
-/// Warns, per domain edge, when the pressure stays high at the edge (see
-/// [`EDGE_PRESSURE_FRACTION`]). A y edge that lies at a roller's free end (within one cell) is
-/// not checked: the pressure legitimately peaks there, and the grid's default y range is the
-/// rollers' axial extent.
 /// Largest friction coefficient of a lubricated contact `ehl` reports without a warning:
 /// measured EHL traction stays below about 0.1 (traction fluids about 0.12; Johnson & Tevaarwerk
 /// 1977, Evans & Johnson 1986); beyond that the model has left its ground.
@@ -696,18 +694,27 @@ fn friction_warning(case: &Case, s: &mut Summary) {
         Some(r) => (false, crate::lubricant::rheology::limiting_shear_stress(r, 1.0).is_some()),
     };
     let why = if newtonian {
-        "the lubricant is Newtonian: at the contact's pressure its viscosity gives shear stresses no oil carries; give lubricant.rheology a non-Newtonian model with a limiting shear stress (Carreau or Eyring with limiting_shear_coefficient) or add [thermal]"
+        "the lubricant is Newtonian: at the contact's pressure its viscosity gives shear stresses no oil carries; give lubricant.rheology a non-Newtonian model with a limiting shear stress (Carreau or Eyring with limiting_shear_coefficient)"
     } else if !limited {
-        "the rheology has no limiting shear stress: give lubricant.rheology a limiting_shear_coefficient (0.04-0.08 for mineral oils; thesis eq. 2.14) or add [thermal]"
+        "the rheology has no limiting shear stress: give lubricant.rheology a limiting_shear_coefficient (0.04-0.08 for mineral oils; thesis eq. 2.14)"
     } else {
-        "check the rheology's parameters and the slide-to-roll ratio, or add [thermal] (sliding heats the film and lowers the traction)"
+        "check the rheology's parameters and the slide-to-roll ratio"
+    };
+    // sliding heats the film and lowers the traction: a cure only where the run is isothermal
+    let thermal = if case.thermal.is_none() {
+        ", or add [thermal] (sliding heats the film and lowers the traction)"
+    } else {
+        ""
     };
     s.warnings.push(format!(
-        "friction coefficient {:.3} exceeds {FRICTION_WARNING}, more than lubricated contacts show (EHL traction stays below about 0.1): {why}",
-        worst
+        "friction coefficient {worst:.3} exceeds {FRICTION_WARNING}, more than lubricated contacts show (EHL traction stays below about 0.1): {why}{thermal}"
     ));
 }
 
+/// Warns, per domain edge, when the pressure stays high at the edge (see
+/// [`EDGE_PRESSURE_FRACTION`]). A y edge that lies at a roller's free end (within one cell) is
+/// not checked: the pressure legitimately peaks there, and the grid's default y range is the
+/// rollers' axial extent.
 fn edge_pressure_warnings(case: &Case, geometry: &Geometry, s: &mut Solution) {
     let g = s.grid;
     let p = &s.fields.pressure;

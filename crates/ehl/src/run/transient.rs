@@ -134,6 +134,18 @@ pub fn frames_every(case: &Case, budget: f64) -> usize {
     (kin.steps / (m + 1) + 1).clamp(1, kin.steps.max(1))
 }
 
+/// The `output.frames_every` of `ehl run`, which streams the frames to disk
+/// ([`crate::output::stream`]): the case's value, else every step; a run with `[stress]` holds
+/// its frames for the worst-frame analysis, so there the memory bound of [`frames_every`]
+/// (within `budget` bytes) applies as in the library.
+pub fn frames_every_streamed(case: &Case, budget: f64) -> usize {
+    match case.output.frames_every {
+        Some(k) => k.max(1),
+        None if case.stress.is_some() => frames_every(case, budget),
+        None => 1,
+    }
+}
+
 /// Everything the transient run needs from `solve`.
 pub(super) struct Context<'a> {
     pub case: &'a Case,
