@@ -105,6 +105,39 @@ fn stale_temp_folders_of_dead_runs_are_removed() {
     assert!(alive.exists());
 }
 
+/// Starts `ehl run case.toml --out results` in `w`, its output into `.stdout` and `.stderr`.
+#[cfg(unix)]
+fn spawn_run(w: &Work) -> (std::process::Child, PathBuf, PathBuf) {
+    let (o, e) = (w.file(".stdout"), w.file(".stderr"));
+    let child = ehl_cmd(w, &["run", "case.toml", "--out", "results"])
+        .stdout(std::fs::File::create(&o).unwrap())
+        .stderr(std::fs::File::create(&e).unwrap())
+        .spawn()
+        .unwrap();
+    (child, o, e)
+}
+
+/// Sends SIGTERM to `child` and waits for it to end (killed, and the test failed, 120 s after
+/// `start`).
+#[cfg(unix)]
+fn terminate(child: &mut std::process::Child, start: Instant) -> std::process::ExitStatus {
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        if start.elapsed() > Duration::from_secs(120) {
+            let _ = child.kill();
+            panic!("ehl did not stop on SIGTERM");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
 /// SIGTERM while solving: exit 130, and nothing of the run is left (no lock file, no temporary
 /// folder, no output folder).
 #[cfg(unix)]
@@ -115,12 +148,7 @@ fn sigterm_removes_what_the_run_had_started() {
         "ny = 32",
         "ny = 128",
     ));
-    let (o, e) = (w.file(".stdout"), w.file(".stderr"));
-    let mut child = ehl_cmd(&w, &["run", "case.toml", "--out", "results"])
-        .stdout(std::fs::File::create(&o).unwrap())
-        .stderr(std::fs::File::create(&e).unwrap())
-        .spawn()
-        .unwrap();
+    let (mut child, o, e) = spawn_run(&w);
     let lock = w.file(".results.lock");
     let start = Instant::now();
     while !lock.exists() {
@@ -130,21 +158,7 @@ fn sigterm_removes_what_the_run_had_started() {
         }
         std::thread::sleep(Duration::from_millis(5));
     }
-    let killed = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(killed.success());
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(120) {
-            let _ = child.kill();
-            panic!("ehl did not stop on SIGTERM");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = terminate(&mut child, start);
     if status.code() == Some(0) {
         // finished before the signal arrived: nothing to check
         return;
@@ -163,12 +177,7 @@ fn sigterm_removes_what_the_run_had_started() {
 fn sigterm_during_a_streamed_transient_run_leaves_nothing() {
     let text = std::fs::read_to_string(examples().join("ehl_transient_line_groove.toml")).unwrap();
     let w = Work::new(&edit(&text, "travel =", "travel = { from = -1.2e-3, to = 1.0e-3, steps = 100000 }"));
-    let (o, e) = (w.file(".stdout"), w.file(".stderr"));
-    let mut child = ehl_cmd(&w, &["run", "case.toml", "--out", "results"])
-        .stdout(std::fs::File::create(&o).unwrap())
-        .stderr(std::fs::File::create(&e).unwrap())
-        .spawn()
-        .unwrap();
+    let (mut child, o, e) = spawn_run(&w);
     // wait until many frames have been streamed (`.vtr` files in the temporary folder): the
     // solver keeps writing new ones while the signal handler empties the folder, which must
     // still go (a single removal pass left it behind)
@@ -187,21 +196,7 @@ fn sigterm_during_a_streamed_transient_run_leaves_nothing() {
         }
         std::thread::sleep(Duration::from_millis(5));
     }
-    let killed = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(killed.success());
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(120) {
-            let _ = child.kill();
-            panic!("ehl did not stop on SIGTERM");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = terminate(&mut child, start);
     assert_eq!(status.code(), Some(130), "{status:?}");
     std::fs::remove_file(o).unwrap();
     std::fs::remove_file(e).unwrap();

@@ -107,21 +107,7 @@ fn hertz_circle_axis_and_no_image_error() {
     let depths: Vec<f64> = (1..=40).map(|k| 0.05 * k as f64).collect();
     let axis = |half: f64, n: usize| {
         let grid = Grid::new(n, n, -half, half, -half, half);
-        let sub = 8;
-        let mut p = vec![0.0; n * n];
-        for j in 0..n {
-            for i in 0..n {
-                let mut acc = 0.0;
-                for v in 0..sub {
-                    for u in 0..sub {
-                        let x = grid.x_min + (i as f64 + (u as f64 + 0.5) / sub as f64) * grid.dx;
-                        let y = grid.y_min + (j as f64 + (v as f64 + 0.5) / sub as f64) * grid.dy;
-                        acc += (1.0 - (x * x + y * y) / (a * a)).max(0.0).sqrt();
-                    }
-                }
-                p[j * n + i] = p0 * acc / (sub * sub) as f64;
-            }
-        }
+        let (p, _) = sliding_circle_loads(&grid, 0.0);
         let f = stress_field(&grid, &p, None, nu, &depths, false);
         let c = (n / 2) * n + n / 2;
         depths

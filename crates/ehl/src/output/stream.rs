@@ -17,7 +17,7 @@
 
 use super::npz::Npz;
 use super::transient::{
-    crop_grid, gif_frame_indices, highest_frame, pvd_of, timeline_header,
+    crop_grid, gif_frame_indices, picture_record, highest_frame, pvd_of, timeline_header,
     timeline_is_thermal, timeline_row, validate_frame, write_passage_frame_png_of,
     write_passage_gif_of, write_snapshots, write_timeline_csv, write_timeline_png,
     write_vtr_frame, zoom_window, FRAMES_DIR, FRAMES_NPZ, GIF_MAX_FRAMES, PASSAGE_GIF,
@@ -170,14 +170,7 @@ impl TransientStream {
         let window = zoom_window(case, g).and_then(|(y0, y1)| crop_grid(g, y0, y1));
         let rows = window.map_or((0, g.ny - 1), |(_, j0, j1)| (j0, j1));
         let frames = self.read_frames(spills, &wanted, n, rows, g.nx)?;
-        let sub = TransientRecord {
-            timeline: t.timeline.clone(),
-            frames,
-            snapshots: Vec::new(),
-            dt_s: t.dt_s,
-            frames_every: t.frames_every,
-            passage: None,
-        };
+        let sub = picture_record(t, frames);
         let at = |i: usize| wanted.binary_search(&i).expect("read above");
         let shown_sub: Vec<usize> = shown.iter().map(|&i| at(i)).collect();
         let zcase;

@@ -614,6 +614,19 @@ pub(super) fn crop_grid(g: &Grid, y0: f64, y1: f64) -> Option<(Grid, usize, usiz
 
 /// The record with every frame cut to the strip `y0 ..= y1` (see [`crop_grid`]), for the
 /// zoomed animation; the timeline is kept whole, the snapshots are dropped.
+/// The record the pictures draw: `t`'s timeline with `frames` (a crop, or the frames shown);
+/// no snapshots, and no passage maps (they are written from the full solution).
+pub(super) fn picture_record(t: &TransientRecord, frames: Vec<Frame>) -> TransientRecord {
+    TransientRecord {
+        timeline: t.timeline.clone(),
+        frames,
+        snapshots: Vec::new(),
+        dt_s: t.dt_s,
+        frames_every: t.frames_every,
+        passage: None,
+    }
+}
+
 pub(super) fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid, TransientRecord)> {
     let (sub, j0, j1) = crop_grid(g, y0, y1)?;
     let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
@@ -628,18 +641,7 @@ pub(super) fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Op
             film: cut(&f.film),
         })
         .collect();
-    Some((
-        sub,
-        TransientRecord {
-            timeline: t.timeline.clone(),
-            frames,
-            snapshots: Vec::new(),
-            dt_s: t.dt_s,
-            frames_every: t.frames_every,
-            // the passage maps are written from the full solution, not a cropped strip
-            passage: None,
-        },
-    ))
+    Some((sub, picture_record(t, frames)))
 }
 
 /// The rows of `solution` whose cell centres lie in `y0 ..= y1`, as a solution on that strip of
