@@ -44,8 +44,9 @@ use system::{
     jacobian_product, LineJacobianPreconditioner, Linear, Physics, Preconditioner, State, System,
 };
 pub use transient::{
-    solve_transient, solve_transient_thermal, MassBalance, MovingSurface, StepResult, StepThermal,
-    TimeScheme, TransientEnd, TransientParams, TransientProblem, DENSE_MAX,
+    solve_transient, solve_transient_observed, solve_transient_thermal, MassBalance,
+    MovingSurface, StartObserver, StepResult, StepThermal, TimeScheme, TransientEnd,
+    TransientParams, TransientProblem, DENSE_MAX,
 };
 
 /// A steady isothermal EHL problem (SI units).

@@ -45,7 +45,7 @@
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
-    better, line_band, solve_from, solve_steady_with_fallback, EhlParams, EhlProblem, SolvedFields, Stats,
+    better, line_band, solve_from, solve_steady_with_fallback_observed, EhlParams, EhlProblem, SolvedFields, Stats,
     Termination,
 };
 use crate::geometry::{GapSampler, GapWithFeatures};
@@ -235,7 +235,28 @@ pub fn solve_transient(
     params: &TransientParams,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
-    rayon::scope(|_| run(problem, params, None, observer))
+    rayon::scope(|_| run(problem, params, None, StartObserver::default(), observer))
+}
+
+/// Told of the steady start of a transient run (which can take most of a short run): every
+/// Newton iterate, then for a thermal run each outer iteration of the temperature fixed point
+/// (its number and the film temperature's change, K). For progress bars.
+#[derive(Default)]
+pub struct StartObserver<'a> {
+    pub newton: Option<super::NewtonObserver<'a>>,
+    pub thermal: Option<&'a mut (dyn FnMut(usize, f64) + Send)>,
+}
+
+/// [`solve_transient`] (`thermal` None) or [`solve_transient_thermal`], with `start` told of
+/// the steady start.
+pub fn solve_transient_observed(
+    problem: &TransientProblem,
+    params: &TransientParams,
+    thermal: Option<(&ThermalParams, &mut ThermalContact)>,
+    start: StartObserver,
+    observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
+) -> TransientEnd {
+    rayon::scope(|_| run(problem, params, thermal, start, observer))
 }
 
 /// [`solve_transient`] with the temperature (issue 13): the steady start is the thermal fixed
@@ -265,7 +286,15 @@ pub fn solve_transient_thermal(
     contact: &mut ThermalContact,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
-    rayon::scope(|_| run(problem, params, Some((thermal, contact)), observer))
+    rayon::scope(|_| {
+        run(
+            problem,
+            params,
+            Some((thermal, contact)),
+            StartObserver::default(),
+            observer,
+        )
+    })
 }
 
 fn gap_at<'a>(problem: &'a TransientProblem, t: f64) -> GapWithFeatures<'a> {
@@ -284,6 +313,7 @@ fn run(
     problem: &TransientProblem,
     params: &TransientParams,
     mut thermal: Option<(&ThermalParams, &mut ThermalContact)>,
+    start: StartObserver,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
     let base = &problem.base;
@@ -302,7 +332,14 @@ fn run(
         gap: &gap0,
         ..*base
     };
-    let mut steady = solve_steady_with_fallback(&steady_problem, &params.newton, &|| {});
+    let mut quiet_newton = |_: &super::NewtonIterate| {};
+    let mut quiet_thermal = |_: usize, _: f64| {};
+    let (newton_told, thermal_told): (super::NewtonObserver, &mut (dyn FnMut(usize, f64) + Send)) = (
+        start.newton.unwrap_or(&mut quiet_newton),
+        start.thermal.unwrap_or(&mut quiet_thermal),
+    );
+    let mut steady =
+        solve_steady_with_fallback_observed(&steady_problem, &params.newton, &|| {}, newton_told);
     // a thermal run starts from the steady thermal solution
     let mut start_thermal = None;
     if let Some((tp, contact)) = thermal.as_mut() {
@@ -313,7 +350,7 @@ fn run(
                 tp,
                 &steady,
                 contact,
-                &mut |_, _| {},
+                thermal_told,
             );
             start_thermal = Some(StepThermal::of(
                 contact,

@@ -878,7 +878,8 @@ fn solve_ehl(
             progress.report(
                 0.9,
                 &format!(
-                    "thermal: outer iteration {outer}, film temperature change {change:.2e} K"
+                    "thermal: outer iteration {outer}{}",
+                    thermal::change_text(change)
                 ),
             )
         };

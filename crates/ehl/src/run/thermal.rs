@@ -196,3 +196,13 @@ pub fn summarise_contact(
         ));
     }
 }
+
+/// ", film temperature change X K" for a progress message; nothing before the first change is
+/// known (the outer iteration's change is infinite until two temperature fields exist).
+pub(crate) fn change_text(change_k: f64) -> String {
+    if change_k.is_finite() {
+        format!(", film temperature change {change_k:.2e} K")
+    } else {
+        String::new()
+    }
+}

@@ -13,7 +13,7 @@
 use super::{film_at, Progress};
 use crate::case::{Case, Travel};
 use crate::ehl::{
-    solve_transient, solve_transient_thermal, EhlParams, EhlProblem, MovingSurface, StepResult,
+    solve_transient_observed, EhlParams, EhlProblem, MovingSurface, StartObserver, StepResult,
     TimeScheme, TransientEnd, TransientParams, TransientProblem,
 };
 use crate::elastic::Deflection;
@@ -389,16 +389,37 @@ pub(super) fn solve(
         last = Some(s.clone());
         ControlFlow::Continue(())
     };
-    let end = match contact.as_mut() {
-        Some(c) => solve_transient_thermal(
-            &problem,
-            &params,
-            &super::thermal::params_for(case),
-            c,
-            &mut observer,
-        ),
-        None => solve_transient(&problem, &params, &mut observer),
+    // the steady start (which can take most of a short run) shows on the progress bar too
+    let mut start_newton = |it: &crate::ehl::NewtonIterate| {
+        progress.report(
+            0.0,
+            &format!(
+                "steady start: Newton step {}, residual {:.1e} (tolerance {:.0e}), {} cells",
+                it.newton_steps, it.residual, it.tolerance, it.cells
+            ),
+        )
     };
+    let mut start_thermal = |outer: usize, change: f64| {
+        progress.report(
+            0.0,
+            &format!(
+                "steady start: thermal outer iteration {outer}{}",
+                super::thermal::change_text(change)
+            ),
+        )
+    };
+    let start = StartObserver {
+        newton: Some(&mut start_newton),
+        thermal: Some(&mut start_thermal),
+    };
+    let thermal_params = super::thermal::params_for(case);
+    let end = solve_transient_observed(
+        &problem,
+        &params,
+        contact.as_mut().map(|c| (&thermal_params, c)),
+        start,
+        &mut observer,
+    );
     if let Some(e) = sink_error {
         return Err(e);
     }
