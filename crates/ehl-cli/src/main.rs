@@ -209,27 +209,41 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     // before solving: refuse a folder ehl did not write, or one another process is writing
     let lock = ehl::output::OutputLock::acquire(&dir)?;
     let bar = progress::Bar::new(args.quiet, 1000);
-    // a transient run streams its per-step files (timeline rows, frames) into the output's
-    // temporary folder as it goes, so that it holds no frame in memory; the folder replaces
-    // the output only once every file is written
-    let transient = case.kind == ehl::case::Kind::Ehl && ehl::run::transient::kinematics(&case).is_some();
-    if transient {
-        // the folder the lock resolved (`--out .` names the current folder by its name)
-        let staging = ehl::output::Staging::begin(lock.dir())?;
-        let mut stream = ehl::output::stream::TransientStream::new(&staging, &case);
-        let solution = ehl::run::solve_with(&case, &bar, &mut stream);
-        bar.finish();
-        let solution = solution?;
-        ehl::output::write_staged(staging, &case, &solution, Some(stream))?;
-        drop(lock);
-        return report(&solution, &dir);
-    }
-    let solution = ehl::run::solve(&case, &bar);
+    let solution = solve_and_write(&lock, &case, &bar, &|| bar.finish());
     bar.finish();
     let solution = solution?;
-    ehl::output::write_locked(&lock, &case, &solution)?;
     drop(lock);
     report(&solution, &dir)
+}
+
+/// Solves `case` and writes its outputs into the folder `lock` holds (`ehl run` and each point
+/// of `ehl sweep`); `solved` is called between the solve and the write. A transient run
+/// streams its per-step files (timeline rows, frames) into the output's temporary folder as it
+/// goes, so that it holds no frame in memory; the folder replaces the output only once every
+/// file is written, and an error removes it.
+pub(crate) fn solve_and_write(
+    lock: &ehl::output::OutputLock,
+    case: &ehl::case::Case,
+    progress: &dyn ehl::run::Progress,
+    solved: &dyn Fn(),
+) -> Result<ehl::solution::Solution> {
+    let transient =
+        case.kind == ehl::case::Kind::Ehl && ehl::run::transient::kinematics(case).is_some();
+    if !transient {
+        let solution = ehl::run::solve(case, progress);
+        solved();
+        let solution = solution?;
+        ehl::output::write_locked(lock, case, &solution)?;
+        return Ok(solution);
+    }
+    // the folder the lock resolved (`--out .` names the current folder by its name)
+    let staging = ehl::output::Staging::begin(lock.dir())?;
+    let mut stream = ehl::output::stream::TransientStream::new(&staging, case);
+    let solution = ehl::run::solve_with(case, progress, &mut stream);
+    solved();
+    let solution = solution?;
+    ehl::output::write_staged(staging, case, &solution, Some(stream))?;
+    Ok(solution)
 }
 
 /// The result line, the warnings and the exit status of a written run.

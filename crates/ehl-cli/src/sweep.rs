@@ -560,11 +560,12 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
                     Outcome::Skipped
                 } else {
                     // one writer per point folder (shards of one sweep may run at once)
-                    let solved = ehl::output::OutputLock::acquire(&folder).and_then(|lock| {
-                        let s = ehl::run::solve(&cases[i], &ehl::run::Silent)?;
-                        ehl::output::write_locked(&lock, &cases[i], &s)?;
-                        Ok(s.summary.converged)
-                    });
+                    let solved = ehl::output::OutputLock::acquire(&folder)
+                        .map_err(anyhow::Error::from)
+                        .and_then(|lock| {
+                            let s = crate::solve_and_write(&lock, &cases[i], &ehl::run::Silent, &|| {})?;
+                            Ok(s.summary.converged)
+                        });
                     match solved {
                         Ok(converged) => Outcome::Solved { converged },
                         Err(e) => Outcome::Failed(format!("sweep point {}: {e}", p.folder)),

@@ -575,3 +575,31 @@ fn bad_transient_input_exits_1_naming_the_key() {
         &["at least 1"],
     );
 }
+
+/// `ehl sweep` over a transient case (the friction against slide-to-roll): each point
+/// folder gets the transient outputs, streamed as `ehl run` streams them (no spill file left),
+/// and `sweep.csv` the friction averaged over each passage.
+#[test]
+fn a_transient_sweep_writes_each_passage() {
+    let w = Work::new(&groove_text());
+    let mut args = vec!["sweep", "case.toml", "--quiet", "--out", "study", "--vary", "motion.slide_to_roll=0:0.5:2"];
+    args.extend_from_slice(&REDUCED);
+    let o = w.ehl(&args);
+    assert_eq!(o.code, 0, "stderr: {}", o.stderr);
+    for p in ["p000_slide_to_roll=0", "p001_slide_to_roll=0.5"] {
+        let dir = w.file("study").join(p);
+        for f in ["timeline.csv", "frames.npz", "passage.pvd", "summary.json"] {
+            assert!(dir.join(f).is_file(), "{p}/{f}");
+        }
+        let hidden: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with('.') && n != ".ehl-output")
+            .collect();
+        assert!(hidden.is_empty(), "{p}: {hidden:?}");
+    }
+    let csv = std::fs::read_to_string(w.file("study/sweep.csv")).unwrap();
+    let head = csv.lines().next().unwrap();
+    assert!(head.contains("friction_coefficient_mean_over_travel"), "{head}");
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+}
