@@ -293,3 +293,25 @@ fn an_unphysical_friction_coefficient_is_warned() {
     assert!(s.friction_coefficient.unwrap() < 0.05);
     assert!(!s.warnings.iter().any(|w| w.contains("friction coefficient")), "{:?}", s.warnings);
 }
+
+/// A light line contact (M = 0.96) on the default inlet of 4 b: its film is starved and the
+/// summary says so, naming grid.x_min; with the inlet at -20 b the film is 29 % thicker and the
+/// warning goes. The thesis Table 3.7 line (M = 10.8) on the default inlet is not warned.
+#[test]
+fn a_starved_light_contact_is_warned() {
+    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
+    let solve = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
+        ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
+    };
+    let light = ["lubricant.viscosity=1.0", "motion={entrainment_speed=40, slide_to_roll=0.02}"];
+    let inlet = |w: &[String]| w.iter().any(|w| w.contains("grid.x_min"));
+    let short = solve(&[&light[..], &["grid.nx=256"]].concat());
+    assert!(inlet(&short.warnings), "{:?}", short.warnings);
+    let long = solve(&[&light[..], &["grid.nx=512", "grid.x_min=-20"]].concat());
+    assert!(!inlet(&long.warnings), "{:?}", long.warnings);
+    assert!(long.central_film_m.unwrap() > 1.2 * short.central_film_m.unwrap());
+    let table_3_7 = solve(&["grid.nx=256"]);
+    assert!(!inlet(&table_3_7.warnings), "{:?}", table_3_7.warnings);
+}

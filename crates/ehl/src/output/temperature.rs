@@ -1,7 +1,7 @@
 //! The outputs of a thermal run (`[thermal]`; contract in interface.md):
 //!
 //! * `temperature.npz`: `x`, `y` (m); `mid_film`, `max_film`, `surface_1`, `surface_2` (K,
-//!   (ny, nx)); `film_section` (K) and `section_z` (m), (nz, nx), the film temperature at the
+//!   (ny, nx); the film maps NaN on cells where no film temperature is solved); `film_section` (K) and `section_z` (m), (nz, nx), the film temperature at the
 //!   collocation points across z along the centre grid line (`section_y`, m).
 //! * `temperature.png`: along the centre line, the temperature rise above the inlet of the film
 //!   (its maximum across z and mid-film) and of both surfaces; below, the film temperature
