@@ -691,7 +691,11 @@ pub const LONG_INLET_M: f64 = 20.0;
 /// M = 10.8) while its inlet starts within 10 b: the short inlet, not the physics, is then the
 /// likely cause (a line at M = 0.96 gave 0.58 with x_min = -4 b, 0.75 with -20 b).
 fn inlet_warning(case: &Case, solution: &mut Solution) {
-    if case.kind != Kind::Ehl || solution.transient.is_some() || case.thermal.is_some() {
+    if case.kind != Kind::Ehl
+        || solution.transient.is_some()
+        || case.thermal.is_some()
+        || !solution.summary.converged
+    {
         return;
     }
     let report = crate::reference::check_report(case);
