@@ -413,16 +413,45 @@ fn profile(s: &Sec, length: f64) -> R<Profile> {
             };
             match kind {
                 "straight" => Profile::Straight,
-                "crowned" => Profile::Crowned {
-                    crown_radius: need("crown_radius", "m")?,
-                },
+                "crowned" => {
+                    let crown_radius = need("crown_radius", "m")?;
+                    // the crown is an arc of this radius along the axis: it cannot span a
+                    // roller longer than its diameter
+                    if length.is_finite() && crown_radius < 0.5 * length {
+                        return Err(p.err(
+                            "crown_radius",
+                            format!(
+                                "a crown of radius {} mm cannot span the roller: it must be at least half the roller length ({} mm); crowns are usually metres",
+                                mm(crown_radius),
+                                mm(0.5 * length)
+                            ),
+                        ));
+                    }
+                    Profile::Crowned { crown_radius }
+                }
                 "logarithmic" => Profile::Logarithmic {
                     load: need("load", "N")?,
                 },
-                "rounded-edge" => Profile::RoundedEdge {
-                    edge_length: edge(&p, need("edge_length", "m")?)?,
-                    edge_radius: need("edge_radius", "m")?,
-                },
+                "rounded-edge" => {
+                    let edge_length = edge(&p, need("edge_length", "m")?)?;
+                    let edge_radius = need("edge_radius", "m")?;
+                    // an arc tangent to the straight part cannot turn through more than a
+                    // quarter circle over the edge zone
+                    if edge_radius < edge_length {
+                        return Err(p.err(
+                            "edge_radius",
+                            format!(
+                                "an edge radius of {} mm cannot round an edge zone of {} mm: it must be at least edge_length",
+                                mm(edge_radius),
+                                mm(edge_length)
+                            ),
+                        ));
+                    }
+                    Profile::RoundedEdge {
+                        edge_length,
+                        edge_radius,
+                    }
+                }
                 _ => {
                     let edge_length = edge(&p, need("edge_length", "m")?)?;
                     let angle = need("angle", "rad")?;

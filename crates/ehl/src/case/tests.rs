@@ -375,6 +375,21 @@ fn rheology_and_profiles() {
     let (k, m) = err(ROLLERS, &["body1.profile=\"crowned\""]);
     assert_eq!(k, "body1.profile");
     assert!(m.contains("crown_radius"), "{m}");
+    // a crown arc shorter than the roller, an edge arc that cannot round its zone: refused
+    // (a robustness scan ran a 1 mm crown on a 10 mm roller to 31 p_h)
+    let (k, _) = err(ROLLERS, &["body1.profile={ kind = \"crowned\", crown_radius = 1e-3 }"]);
+    assert_eq!(k, "body1.profile.crown_radius");
+    let (k, _) = err(
+        ROLLERS,
+        &["body1.profile={ kind = \"rounded-edge\", edge_length = 1e-3, edge_radius = 0.5e-3 }"],
+    );
+    assert_eq!(k, "body1.profile.edge_radius");
+    for ok in [
+        "body1.profile={ kind = \"crowned\", crown_radius = 0.5 }",
+        "body1.profile={ kind = \"rounded-edge\", edge_length = 1e-3, edge_radius = 1e-3 }",
+    ] {
+        assert!(parse(ROLLERS, &[ok]).is_ok(), "{ok}");
+    }
 }
 
 #[test]
