@@ -265,17 +265,20 @@ fn invalid_inputs_are_typed_errors() {
     assert!(friction(&bad).is_err());
 }
 
+/// The summary of the thesis Table 3.7 line (`examples/ehl_friction_line.toml`) with `sets`.
+fn solve_table_3_7_line(sets: &[&str]) -> ehl::solution::Summary {
+    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
+    ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
+}
+
 /// A friction coefficient no lubricated contact shows is said in the summary: the thesis Table
 /// 3.7 line made Newtonian at SRR 0.5 and G = 5000 gives f ~ 356 and a warning naming the
 /// rheology; the example's Carreau oil with its limiting shear stress gives 0.011 and none.
 #[test]
 fn an_unphysical_friction_coefficient_is_warned() {
-    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
-    let solve = |sets: &[&str]| {
-        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
-        ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
-    };
+    let solve = solve_table_3_7_line;
     let s = solve(&[
         "grid.nx=128",
         "lubricant.rheology={model=\"newtonian\"}",
@@ -299,12 +302,7 @@ fn an_unphysical_friction_coefficient_is_warned() {
 /// warning goes. The thesis Table 3.7 line (M = 10.8) on the default inlet is not warned.
 #[test]
 fn a_starved_light_contact_is_warned() {
-    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
-    let solve = |sets: &[&str]| {
-        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
-        ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
-    };
+    let solve = solve_table_3_7_line;
     let light = ["lubricant.viscosity=1.0", "motion={entrainment_speed=40, slide_to_roll=0.02}"];
     let inlet = |w: &[String]| w.iter().any(|w| w.contains("grid.x_min"));
     let short = solve(&[&light[..], &["grid.nx=256"]].concat());
