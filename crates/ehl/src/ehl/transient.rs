@@ -235,7 +235,7 @@ pub fn solve_transient(
     params: &TransientParams,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
-    rayon::scope(|_| run(problem, params, None, StartObserver::default(), observer))
+    solve_transient_observed(problem, params, None, StartObserver::default(), observer)
 }
 
 /// Told of the steady start of a transient run (which can take most of a short run): every
@@ -286,15 +286,13 @@ pub fn solve_transient_thermal(
     contact: &mut ThermalContact,
     observer: &mut (dyn FnMut(&StepResult) -> ControlFlow<()> + Send),
 ) -> TransientEnd {
-    rayon::scope(|_| {
-        run(
-            problem,
-            params,
-            Some((thermal, contact)),
-            StartObserver::default(),
-            observer,
-        )
-    })
+    solve_transient_observed(
+        problem,
+        params,
+        Some((thermal, contact)),
+        StartObserver::default(),
+        observer,
+    )
 }
 
 fn gap_at<'a>(problem: &'a TransientProblem, t: f64) -> GapWithFeatures<'a> {

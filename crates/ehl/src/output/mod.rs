@@ -237,7 +237,7 @@ fn write_files(
     }
     plot::write_centerline(&tmp.join(CENTERLINE_PNG), case, solution)?;
     match stream {
-        Some(s) => s.finish(tmp, case, solution)?,
+        Some(s) => s.finish(case, solution)?,
         None => transient::write(tmp, case, solution)?,
     }
     stress::write(tmp, case, solution)?;

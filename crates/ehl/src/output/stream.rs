@@ -59,7 +59,9 @@ pub struct TransientStream {
     out: PathBuf,
     case: Case,
     grid: Option<Grid>,
-    /// the rows of the zoom window of the pictures (`j0 ..= j1`), or the whole grid
+    /// the strip of rows the pictures zoom onto (`zoom_window`): its grid and rows j0 ..= j1
+    window: Option<(Grid, usize, usize)>,
+    /// the rows the pictures show: the window's, or the whole grid
     rows: (usize, usize),
     thermal: bool,
     timeline: Option<BufWriter<File>>,
@@ -77,6 +79,7 @@ impl TransientStream {
             out: staging.target().to_path_buf(),
             case: case.clone(),
             grid: None,
+            window: None,
             rows: (0, 0),
             thermal: false,
             timeline: None,
@@ -94,10 +97,11 @@ impl TransientStream {
         self
     }
 
-    /// Writes the transient outputs that remain after the run into `dir` (the staging folder
-    /// the stream was made for) from `solution` (its timeline and snapshots; its frames are not
-    /// read), then removes the spill files. `solution.transient` must be the run's record.
-    pub fn finish(mut self, dir: &Path, case: &Case, solution: &Solution) -> Result<()> {
+    /// Writes the transient outputs that remain after the run into the staging folder from
+    /// `solution` (its timeline and snapshots; its frames are not read), then removes the spill
+    /// files. `solution.transient` must be the run's record.
+    pub fn finish(mut self, case: &Case, solution: &Solution) -> Result<()> {
+        let dir = self.dir.clone();
         let spills: Vec<PathBuf> = SPILL.iter().map(|n| self.dir.join(n)).collect();
         let Some(t) = &solution.transient else {
             // not a transient solution: nothing of the stream belongs in the output
@@ -121,7 +125,7 @@ impl TransientStream {
             w.flush().map_err(|e| io_err(p, e))?;
         }
         self.spill.clear();
-        let result = self.write_rest(dir, case, solution, t, &g, &spills);
+        let result = self.write_rest(&dir, case, solution, t, &g, &spills);
         for p in &spills {
             let _ = std::fs::remove_file(p);
         }
@@ -167,14 +171,12 @@ impl TransientStream {
         wanted.dedup();
         // where the whole map would show features[0] as a speck, the pictures show a strip of
         // rows around it (`zoom_window`): only those rows are read back
-        let window = zoom_window(case, g).and_then(|(y0, y1)| crop_grid(g, y0, y1));
-        let rows = window.map_or((0, g.ny - 1), |(_, j0, j1)| (j0, j1));
-        let frames = self.read_frames(spills, &wanted, n, rows, g.nx)?;
+        let frames = self.read_frames(spills, &wanted, n, self.rows, g.nx)?;
         let sub = picture_record(t, frames);
         let at = |i: usize| wanted.binary_search(&i).expect("read above");
         let shown_sub: Vec<usize> = shown.iter().map(|&i| at(i)).collect();
         let zcase;
-        let (case_a, g_a, t_a) = match &window {
+        let (case_a, g_a, t_a) = match &self.window {
             Some((zg, _, _)) => {
                 let mut c = case.clone();
                 c.title = format!("zoom on features[0] — {}", case.title);
@@ -249,9 +251,8 @@ impl StepSink for TransientStream {
         }
         self.grid = Some(*grid);
         self.thermal = thermal;
-        self.rows = zoom_window(&self.case, grid)
-            .and_then(|(y0, y1)| crop_grid(grid, y0, y1))
-            .map_or((0, grid.ny - 1), |(_, j0, j1)| (j0, j1));
+        self.window = zoom_window(&self.case, grid).and_then(|(y0, y1)| crop_grid(grid, y0, y1));
+        self.rows = self.window.map_or((0, grid.ny - 1), |(_, j0, j1)| (j0, j1));
         let path = self.dir.join(TIMELINE_CSV);
         let mut w = BufWriter::new(File::create(&path).map_err(|e| io_err(&path, e))?);
         w.write_all(timeline_header(thermal).as_bytes())

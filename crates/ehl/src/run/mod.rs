@@ -438,13 +438,13 @@ pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink)
         }
         Kind::Ehl => match kin {
             Some(kin) => {
-                let est = memory_estimate(case);
-                // frames that go to disk need no memory, unless the run keeps them all the same
-                // (`[stress]`: its worst-frame analysis reads them after the run)
-                let budget = if sink.frames_in_memory() || case.stress.is_some() {
-                    memory_limit().0 - est.bytes
+                let budget = memory_limit().0 - memory_estimate(case).bytes;
+                // frames that go to disk need no memory (unless the run keeps them all the
+                // same: `[stress]`, see `frames_every_streamed`)
+                let frames_every = if sink.frames_in_memory() {
+                    transient::frames_every(case, budget)
                 } else {
-                    f64::INFINITY
+                    transient::frames_every_streamed(case, budget)
                 };
                 transient::solve(
                     &transient::Context {
@@ -457,7 +457,7 @@ pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink)
                         initial_pressure: dry.converged.then_some(dry.pressure.as_slice()),
                         hertz: (hertz.b, hertz.ph),
                         kin,
-                        frames_every: transient::frames_every(case, budget),
+                        frames_every,
                     },
                     summary,
                     progress,
