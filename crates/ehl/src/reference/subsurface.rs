@@ -64,7 +64,7 @@ pub fn boussinesq_point(x: f64, y: f64, z: f64, nu: f64) -> [f64; 6] {
             c * (m * (f * (y * y - x * x) / r2 + z * x * x / (r3 * r2)) - 3.0 * z * y * y / r5),
         )
     } else {
-        // on the axis: the limit of both is (1 - 2 nu)/(2 z^2) / (2 pi) ... - 0
+        // on the axis (r -> 0) both tend to (1 - 2 nu) / (4 pi z^2) (tested)
         let v = c * m * 0.5 / (z * z);
         (v, v)
     };
