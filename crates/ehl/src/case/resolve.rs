@@ -1257,6 +1257,47 @@ fn alignment(top: &Sec, point: bool) -> R<Alignment> {
     Ok(a)
 }
 
+/// A skew leaves a line contact only while the skewed roller's length projected on body 1's
+/// axis is longer than the contact is wide. Near pi/2 the axes cross and the contact becomes a
+/// point contact of crossed cylinders, which the line-contact model (its Hertz line scales and
+/// axial grid over the projected overlap) cannot represent: the projected length then goes to 0
+/// and the line load per unit length, hence p_h, without bound. Refused when the projected
+/// overlap `l_c` is shorter than the Hertz width 2 b_c at the load per unit of `l_c`
+/// (b_c = b sqrt(l / l_c), b the half-width at the unprojected overlap l).
+fn skew_keeps_a_line(
+    top: &Sec,
+    c: Contact,
+    body1: &Body,
+    body2: &Body,
+    a: &Alignment,
+    b: f64,
+) -> R<()> {
+    let Contact::Line { len, .. } = c else {
+        return Ok(());
+    };
+    if a.skew == 0.0 || !len.is_finite() {
+        return Ok(());
+    }
+    let half = |body: &Body, proj: f64| 0.5 * body.length * proj;
+    let (h1, h2) = (half(body1, 1.0), half(body2, a.skew.cos().abs()));
+    let off = body2.axial_offset;
+    let lc = ((h1).min(off + h2) - (-h1).max(off - h2)).max(0.0);
+    let bc = if lc > 0.0 { b * (len / lc).sqrt() } else { f64::INFINITY };
+    if lc >= 2.0 * bc {
+        return Ok(());
+    }
+    Err(case_err(
+        top.file,
+        "alignment.skew",
+        format!(
+            "a skew of {} rad crosses the rollers' axes so far that body 2's length projected on body 1's axis overlaps it over only {} mm, shorter than the contact's Hertz width there ({} mm): the contact is then a point contact of crossed cylinders, which the finite line-contact model does not represent; keep the skew smaller (here the projected overlap must stay above the width, i.e. well below pi/2)",
+            fmt_num(a.skew),
+            fmt_num(lc * 1e3),
+            fmt_num(2.0 * bc * 1e3)
+        ),
+    ))
+}
+
 /// `[grid]`, in units of the Hertz half-width `b` (contact radius a for balls).
 /// `ky`: the Hertz semi-axis along y over the one along x (point contacts; NaN for lines).
 fn grid(top: &Sec, kind: Kind, c: Contact, b: f64, ky: f64) -> R<GridSpec> {
@@ -2193,6 +2234,7 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
     let r = units::reduced_radius(body1.radius, body2.radius);
     let alignment = alignment(&top, matches!(c, Contact::Point { .. }))?;
     let (load, b, ky) = load(&top, c, r, e_red)?;
+    skew_keeps_a_line(&top, c, &body1, &body2, &alignment, b)?;
 
     let (motion, lubricant) = if kind == Kind::Ehl {
         for (k, what) in [

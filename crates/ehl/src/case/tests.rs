@@ -900,6 +900,23 @@ fn body_pairs() {
     assert_eq!(k, "body2.axial_offset");
 }
 
+/// A robustness scan found a skew 3e-8 short of pi/2 (crossed rollers) accepted, with a Hertz
+/// estimate of 44000 GPa, ending in "no cell can carry load". The rollers of ROLLERS (L = 4 mm,
+/// b = 0.659 mm at 30 kN): the projected overlap L cos s equals the width 2 b sqrt(1 / cos s)
+/// at cos s = (2 b / L)^(2/3), s = 1.073 rad; the thesis' 0.5 rad (fig. 1.15) and 1.03 rad pass,
+/// 1.12 rad and pi/2 - 3e-8 are refused by `alignment.skew`.
+#[test]
+fn a_skew_that_crosses_the_rollers_is_refused() {
+    for s in ["0.5", "1.03", "-1.03"] {
+        assert!(parse(ROLLERS, &[&format!("alignment.skew={s}")]).is_ok(), "{s}");
+    }
+    for s in ["1.12", "-1.12", "1.5707963"] {
+        let (k, m) = err(ROLLERS, &[&format!("alignment.skew={s}")]);
+        assert_eq!(k, "alignment.skew", "{s}");
+        assert!(m.contains("crossed cylinders"), "{m}");
+    }
+}
+
 /// Found by the fuzzer: a radius of f64::MIN_POSITIVE was accepted and gave a NaN resolution in
 /// the check report. Sizes outside 1 um .. 1 km are refused by their key.
 #[test]
