@@ -14,7 +14,9 @@
 //! The residual vector R = [Phi; s_L (dX dY sum P - W*)], s_L = sqrt(n) / W*, so that
 //! ||R|| / sqrt(n) weighs the RMS of Phi (in units of p_h) and the relative load error alike.
 //!
-//! Preconditioner (right): per grid line j a banded matrix along x assembled analytically:
+//! Preconditioner (right): per grid line j a banded matrix along x, the rows of the Reynolds
+//! Jacobian that [`crate::reynolds::jacobian::reynolds_row`] writes from the residual's own
+//! stencil, kept where they fall on the line:
 //! the Poiseuille tridiagonal with eps frozen, the wedge term's dependence on P through H
 //! (d(rho_i H_i)/dP_m = rho'_i H_i delta_im + rho_i Khat(i - m, 0) for |i - m| <= band, Khat the
 //! dimensionless kernel coefficient), differenced with the Couette upwind rule, identity rows on
@@ -43,6 +45,7 @@ use crate::linalg::dense::{dot4 as dot, DenseLu};
 use crate::linalg::hodlr::Hodlr;
 use crate::linalg::multigrid::{LineMultigrid, LineOperator};
 use crate::lubricant::{density, viscosity};
+use crate::reynolds::jacobian;
 use crate::reynolds::residual::{self, Fields, ReynoldsGrid};
 use rayon::prelude::*;
 
@@ -274,15 +277,6 @@ pub(crate) struct ThermalFactors {
     pub couette: Vec<f64>,
 }
 
-/// The wedge stencil of cell (i, j) on q = rho H of cells k, k-1, k-2 with the squeeze term's
-/// `c0` on the cell itself: where the residual's Couette and squeeze terms meet the Jacobian's
-/// diagonal (the scaling) and the preconditioner.
-fn flow_stencil(rg: &ReynoldsGrid, active: &[bool], c0: f64, i: usize, j: usize) -> [f64; 3] {
-    let mut a = residual::couette_stencil(rg, active, i, j);
-    a[0] += c0;
-    a
-}
-
 /// The squeeze term d(rho H)/dT = c0 (rho H) - history of one time step (see
 /// [`residual::Transient`]); it enters the residual, the Jacobian product and the
 /// preconditioner through the same coefficient c0.
@@ -360,6 +354,16 @@ impl System {
         residual::Fields {
             couette_shift: self.couette_shift.as_deref(),
             ..st.fields(&self.active)
+        }
+    }
+
+    /// The state `st` as the Reynolds Jacobian's rows see it ([`jacobian::reynolds_row`]).
+    pub fn linearisation<'a>(&'a self, st: &'a State) -> jacobian::Linearisation<'a> {
+        jacobian::Linearisation {
+            f: self.fields(st),
+            drho: &st.drho,
+            dlneta: &st.dlneta,
+            c0: self.squeeze_c0(),
         }
     }
 
@@ -585,18 +589,13 @@ impl System {
     /// share c_k Pois_k of that diagonal (what the preconditioner's coarse grids select by).
     pub fn scaling(&self, st: &State, c: &mut [f64], share: Option<&mut [f64]>) {
         let nx = self.rg.nx;
-        let (rg, active, khat, c0) = (
-            &self.rg,
-            &self.active[..],
-            &self.khat[..],
-            self.squeeze_c0(),
-        );
-        let shift = self.couette_shift.as_deref();
+        let (rg, active, khat) = (&self.rg, &self.active[..], &self.khat[..]);
+        let lin = self.linearisation(st);
         let row = |j: usize, cj: &mut [f64], mut sj: Option<&mut [f64]>| {
             for (i, ck) in cj.iter_mut().enumerate() {
                 let k = j * nx + i;
                 let (c, s) = if active[k] {
-                    let (pois, wedge) = diagonal(rg, active, khat, c0, st, shift, i, j);
+                    let (pois, wedge) = jacobian::diagonal(rg, &lin, khat, i, j);
                     let c = 1.0 / (pois + wedge.abs());
                     (c, c * pois)
                 } else {
@@ -688,150 +687,76 @@ impl System {
     }
 }
 
-/// (Poiseuille, wedge) parts of dF_k/dP_k with eps frozen (see [`System::scaling`]).
-#[allow(clippy::too_many_arguments)]
-fn diagonal(
-    rg: &ReynoldsGrid,
-    active: &[bool],
-    khat: &[f64],
-    c0: f64,
-    st: &State,
-    couette_shift: Option<&[f64]>,
-    i: usize,
-    j: usize,
-) -> (f64, f64) {
-    let k = j * rg.nx + i;
-    let f = st.fields(active);
-    let nb = residual::neighbours(rg, i, j);
-    let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
-    let mut pois = 0.0;
-    for (d, &n) in nb.iter().enumerate() {
-        if d >= 2 && rg.ny == 1 {
-            break;
-        }
-        pois += residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 }).0;
-    }
-    let a = flow_stencil(rg, active, c0, i, j);
-    // the squeeze term acts on rho H, the Couette term on rho (H + shift)
-    let couette0 = a[0] - c0;
-    let mut wedge = a[0] * (st.drho[k] * st.h[k] + st.rho[k] * khat[0])
-        + couette0 * st.drho[k] * shift_at(couette_shift, k);
-    for (o, &ao) in a.iter().enumerate().skip(1) {
-        if i >= o && active[k - o] && o < khat.len() {
-            wedge += ao * st.rho[k - o] * khat[o];
-        }
-    }
-    (pois, wedge)
-}
-
-/// The features' Couette shift of cell `k` (film units; 0 without one).
-#[inline]
-fn shift_at(couette_shift: Option<&[f64]>, k: usize) -> f64 {
-    couette_shift.map_or(0.0, |s| s[k])
-}
-
-/// Adds row by row the local linearisation of grid line `j` (the Poiseuille stencil along x with
-/// eps frozen and through eps, the wedge and squeeze terms on rho H with the elastic coupling,
-/// identity rows on the active set `set`, the shift on the Reynolds rows) to `out`, i and l
-/// cell indices along the line: the local entries by [`LineSink::add`], the elastic coupling
-/// through the film of each cell by [`LineSink::add_kernel`] (khat[|i - l|] over the sink's
-/// band). With the kernel over the whole line (ny == 1, [`DenseSink`]) this is the exact
-/// Jacobian dR/dP of the Newton step (without the H0 column and the load row).
+/// Adds row by row the local linearisation of grid line `j` to `out` (the rows of
+/// [`jacobian::reynolds_row`] scaled by c_k, identity rows on the active set `set`, the shift
+/// on the Reynolds rows), i and l cell indices along the line: the local entries by
+/// [`LineSink::add`], the elastic coupling through the film of each cell by
+/// [`LineSink::add_kernel`] (khat[|i - l|] over the sink's band); with `y`, the entries of the
+/// cells below and above (the y faces' Poiseuille terms with their eps) into its two rows.
+/// With the kernel over the whole line (ny == 1, [`DenseSink`]) this is the exact Jacobian
+/// dR/dP of the Newton step (without the H0 column and the load row).
 #[allow(clippy::too_many_arguments)]
 fn assemble_line(
     rg: &ReynoldsGrid,
-    active: &[bool],
-    c0: f64,
-    st: &State,
-    couette_shift: Option<&[f64]>,
+    lin: &jacobian::Linearisation,
     c: &[f64],
     set: &[bool],
     shift: f64,
     j: usize,
     out: &mut impl LineSink,
+    mut y: Option<(&mut [f64], &mut [f64])>,
 ) {
-    let rg = *rg;
-    let (nx, ny) = (rg.nx, rg.ny);
-    let (dx2, dy2) = (rg.dx * rg.dx, rg.dy * rg.dy);
-    let f = st.fields(active);
+    let nx = rg.nx;
+    let lo = j * nx;
     for i in 0..nx {
-        let k = j * nx + i;
+        let k = lo + i;
         if set[k] {
             out.add(i, i, 1.0);
             continue;
         }
         out.add(i, i, shift);
-        let ck = c[k];
-        let nb = residual::neighbours(&rg, i, j);
-        for (d, &n) in nb.iter().enumerate() {
-            if d >= 2 && ny == 1 {
-                break;
-            }
-            let (cf, _) = residual::face(&f, k, n, if d < 2 { dx2 } else { dy2 });
-            out.add(i, i, ck * cf);
-            if d < 2 {
-                if let Some(n) = n {
-                    if active[n] {
-                        let il = if d == 0 { i - 1 } else { i + 1 };
-                        out.add(i, il, -ck * cf);
-                    }
-                }
-            }
-        }
-        // Poiseuille through eps: eps_m = rho H^3 / (eta lambda), so
-        // d eps_m / dP_l = eps_m [(rho'/rho - eta'/eta) delta_ml + 3 Khat(m - l) / H_m]
-        let mut geps = [0.0; 3]; // coefficient of d eps_{k-1}, d eps_k, d eps_{k+1}
-        for (d, &n) in nb.iter().enumerate() {
-            if d >= 2 && ny == 1 {
-                break;
-            }
-            let d2 = if d < 2 { dx2 } else { dy2 };
-            match n {
-                Some(n) if active[n] => {
-                    let g = -0.5 / d2 * (st.p[n] - st.p[k]);
-                    geps[1] += g;
-                    if d < 2 {
-                        geps[if d == 0 { 0 } else { 2 }] += g;
-                    }
-                }
-                _ => geps[1] += 2.0 * st.p[k] / d2,
-            }
-        }
-        for (s, &g) in geps.iter().enumerate() {
-            if g == 0.0 || (s == 0 && i == 0) || (s == 2 && i + 1 >= nx) {
-                continue;
-            }
-            let im = i + s - 1;
-            let km = j * nx + im;
-            let e = st.eps[km];
-            if e == 0.0 || !active[km] {
-                continue;
-            }
-            out.add(
-                i,
-                im,
-                ck * g * e * (st.drho[km] / st.rho[km] - st.dlneta[km]),
-            );
-            let hm = st.h[km];
-            if hm > 0.0 {
-                out.add_kernel(i, im, ck * g * e * 3.0 / hm);
+        let mut row = LineRow {
+            out: &mut *out,
+            y: y.as_mut().map(|(s, n)| (&mut s[i], &mut n[i])),
+            i,
+            k,
+            lo,
+            nx,
+            ck: c[k],
+        };
+        jacobian::reynolds_row(rg, lin, i, j, &mut row);
+    }
+}
+
+/// One row of [`assemble_line`]: the entries of [`jacobian::reynolds_row`] that fall on the
+/// line go to its sink, those of the cells below and above (k -/+ nx) to `y`; the elastic
+/// coupling across lines is left to the outer Krylov iteration.
+struct LineRow<'a, S: LineSink> {
+    out: &'a mut S,
+    y: Option<(&'a mut f64, &'a mut f64)>,
+    i: usize,
+    k: usize,
+    lo: usize,
+    nx: usize,
+    ck: f64,
+}
+
+impl<S: LineSink> jacobian::RowSink for LineRow<'_, S> {
+    fn local(&mut self, _: jacobian::Term, m: usize, v: f64) {
+        if (self.lo..self.lo + self.nx).contains(&m) {
+            self.out.add(self.i, m - self.lo, self.ck * v);
+        } else if let Some((south, north)) = self.y.as_mut() {
+            if m + self.nx == self.k {
+                **south += self.ck * v;
+            } else if m == self.k + self.nx {
+                **north += self.ck * v;
             }
         }
-        let a = flow_stencil(&rg, active, c0, i, j);
-        for (o, &ao) in a.iter().enumerate() {
-            if ao == 0.0 || i < o {
-                continue;
-            }
-            let (im, km) = (i - o, k - o);
-            if !active[km] {
-                continue;
-            }
-            // the wedge and squeeze terms on rho H (rho' H locally, rho through the film), and
-            // the Couette part of the stencil on the features' shift as well, rho' shift
-            let couette = if o == 0 { ao - c0 } else { ao };
-            let hk = st.h[km] * ao + shift_at(couette_shift, km) * couette;
-            out.add(i, im, ck * st.drho[km] * hk);
-            out.add_kernel(i, im, ck * ao * st.rho[km]);
+    }
+
+    fn kernel(&mut self, _: jacobian::Term, m: usize, a: f64) {
+        if (self.lo..self.lo + self.nx).contains(&m) {
+            self.out.add_kernel(self.i, m - self.lo, self.ck * a);
         }
     }
 }
@@ -965,21 +890,21 @@ impl Preconditioner {
             mut north,
             ..
         } = LineOperator::zero(nx, ny, kl.min(nx - 1), ku.min(nx - 1), fine);
-        let dy2 = rg.dy * rg.dy;
         let (active, khat) = (&sys.active[..], &sys.khat[..]);
-        let c0 = sys.squeeze_c0();
-        let couette_shift = sys.couette_shift.as_deref();
+        let lin = sys.linearisation(st);
+        // each line's band, and its coupling to the cells below and above (the y faces of the
+        // Poiseuille term, with eps of the neighbour through its own pressure dependence)
+        let n = nx * ny;
         lines
             .par_iter_mut()
+            .zip(south.par_chunks_mut(nx))
+            .zip(north.par_chunks_mut(nx))
             .with_min_len(min_len(nx))
             .enumerate()
-            .for_each(|(j, m)| {
+            .for_each(|(j, ((m, sj), nj))| {
                 assemble_line(
                     &rg,
-                    active,
-                    c0,
-                    st,
-                    couette_shift,
+                    &lin,
                     c,
                     set,
                     shift,
@@ -989,38 +914,9 @@ impl Preconditioner {
                         active: &active[j * nx..(j + 1) * nx],
                         khat,
                     },
+                    (ny > 1).then_some((sj, nj)),
                 )
             });
-        // coupling to the cells below and above: the y faces of the Poiseuille term, with eps
-        // of the neighbour frozen except for its own pressure dependence (rho'/rho - eta'/eta)
-        let n = nx * ny;
-        if ny > 1 {
-            let f = st.fields(active);
-            south
-                .par_chunks_mut(nx)
-                .zip(north.par_chunks_mut(nx))
-                .with_min_len(min_len(nx))
-                .enumerate()
-                .for_each(|(j, (sj, nj))| {
-                    for i in 0..nx {
-                        let k = j * nx + i;
-                        if set[k] {
-                            continue;
-                        }
-                        let nb = residual::neighbours(&rg, i, j);
-                        for (d, out) in [(2, &mut sj[i]), (3, &mut nj[i])] {
-                            let Some(m) = nb[d] else { continue };
-                            if !active[m] {
-                                continue;
-                            }
-                            let (cf, _) = residual::face(&f, k, nb[d], dy2);
-                            let g = -0.5 / dy2 * (st.p[m] - st.p[k]);
-                            let de = st.eps[m] * (st.drho[m] / st.rho[m] - st.dlneta[m]);
-                            *out = c[k] * (-cf + g * de);
-                        }
-                    }
-                });
-        }
         let op = LineOperator {
             nx,
             ny,
@@ -1142,10 +1038,7 @@ impl LineJacobianPreconditioner {
         let mut jp = vec![0.0; n * n];
         assemble_line(
             &rg,
-            &sys.active,
-            sys.squeeze_c0(),
-            st,
-            sys.couette_shift.as_deref(),
+            &sys.linearisation(st),
             c,
             set,
             shift,
@@ -1157,6 +1050,7 @@ impl LineJacobianPreconditioner {
                 all_active: sys.active.iter().all(|&a| a),
                 kk: (0..2 * n - 1).map(|t| khat[t.abs_diff(n - 1)]).collect(),
             },
+            None,
         );
         let w = sys.load_scale() * sys.area;
         let load: Vec<f64> = sys

@@ -87,67 +87,148 @@ impl Fields<'_> {
     }
 }
 
+/// One face's upwind formula for rho H: `q_{k-o}` (first order), or
+/// `1.5 q_{k-o} - 0.5 q_{k-o-1}` (second order), o the `offset` from cell k.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Upwind {
+    pub offset: usize,
+    pub second: bool,
+}
+
+impl Upwind {
+    /// The face value of `q` for cell `k`.
+    #[inline(always)]
+    fn value(self, q: &[f64], k: usize) -> f64 {
+        let m = k - self.offset;
+        if self.second {
+            1.5 * q[m] - 0.5 * q[m - 1]
+        } else {
+            q[m]
+        }
+    }
+
+    /// The face value of the Couette term's rho (H + shift) for cell `k` (as [`Self::value`];
+    /// written out, since a closure for q was not inlined: 2.5 % of the waviness line's run).
+    #[inline(always)]
+    fn couette(self, f: &Fields, k: usize) -> f64 {
+        let m = k - self.offset;
+        if self.second {
+            1.5 * f.couette_q(m) - 0.5 * f.couette_q(m - 1)
+        } else {
+            f.couette_q(m)
+        }
+    }
+
+    /// The weights of q_k, q_{k-1}, q_{k-2} in the face value.
+    #[inline(always)]
+    pub(crate) fn weights(self) -> [f64; 3] {
+        let mut w = [0.0; 3];
+        if self.second {
+            w[self.offset] = 1.5;
+            w[self.offset + 1] = -0.5;
+        } else {
+            w[self.offset] = 1.0;
+        }
+        w
+    }
+}
+
+/// The upwind rule of the Couette term, stated once: the formulas of the west (inlet) and east
+/// (outlet) face values of rho H of cell `(i, j)`, `(west, east)`. The residual evaluates the
+/// faces with them ([`couette_west`], [`couette_east`], [`mass_flow`]), the Jacobian
+/// differentiates them ([`couette_stencil`]) and the features' transport inverts the east one
+/// ([`feature_transport`]).
+///
+/// * west face: the first cell of a run (i = 0 or no material west) takes its own value (zero
+///   gradient into the domain); else `q_{k-1}` (first order, or the second cell of a run), else
+///   `1.5 q_{k-1} - 0.5 q_{k-2}`;
+/// * east face: `q_k` (first order, or the first cell of a run), else `1.5 q_k - 0.5 q_{k-1}`.
+#[inline(always)]
+pub(crate) fn couette_rule(
+    g: &ReynoldsGrid,
+    active: &[bool],
+    i: usize,
+    j: usize,
+) -> (Upwind, Upwind) {
+    let k = j * g.nx + i;
+    let first_cell = i == 0 || !active[k - 1];
+    let west = if first_cell {
+        Upwind { offset: 0, second: false }
+    } else {
+        let second = g.second_order && i > 1 && active[k - 2];
+        Upwind { offset: 1, second }
+    };
+    let east = Upwind {
+        offset: 0,
+        second: g.second_order && !first_cell,
+    };
+    (west, east)
+}
+
 /// Upwind Couette face value of rho H on the inlet (west) face of cell `(i, j)`.
 #[inline(always)]
 pub(crate) fn couette_west(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> f64 {
-    let k = j * g.nx + i;
-    let q = |k: usize| f.couette_q(k);
-    if i == 0 || !f.active[k - 1] {
-        // inlet face: zero gradient
-        q(k)
-    } else if !g.second_order || i == 1 || !f.active[k - 2] {
-        q(k - 1)
-    } else {
-        1.5 * q(k - 1) - 0.5 * q(k - 2)
-    }
+    couette_rule(g, f.active, i, j).0.couette(f, j * g.nx + i)
 }
 
 /// Upwind Couette face value of rho H on the outlet (east) face of cell `(i, j)`.
 #[inline(always)]
 pub(crate) fn couette_east(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> f64 {
+    couette_rule(g, f.active, i, j).1.couette(f, j * g.nx + i)
+}
+
+/// The Couette term `(east - west) / dX` of cell `(i, j)`.
+#[inline(always)]
+fn couette_at(g: &ReynoldsGrid, f: &Fields, i: usize, j: usize) -> f64 {
+    let (w, e) = couette_rule(g, f.active, i, j);
     let k = j * g.nx + i;
-    let q = |k: usize| f.couette_q(k);
-    if !g.second_order || i == 0 || !f.active[k - 1] {
-        q(k)
-    } else {
-        1.5 * q(k) - 0.5 * q(k - 1)
-    }
+    (e.couette(f, k) - w.couette(f, k)) / g.dx
 }
 
 /// Derivative of the Couette term `(east - west) / dX` of cell `(i, j)` with respect to
-/// `q = rho H` of the cells `k`, `k - 1`, `k - 2` (same upwind rules as [`couette_east`] and
-/// [`couette_west`]): the wedge part of the Jacobian row.
+/// `q = rho H` of the cells `k`, `k - 1`, `k - 2` ([`couette_rule`]'s weights differenced): the
+/// wedge part of the Jacobian row (an entry of 0 marks a cell that is not read).
 #[inline]
 pub(crate) fn couette_stencil(g: &ReynoldsGrid, active: &[bool], i: usize, j: usize) -> [f64; 3] {
-    let k = j * g.nx + i;
-    let mut a = [0.0; 3];
-    let first_cell = i == 0 || !active[k - 1];
-    if !g.second_order || first_cell {
-        a[0] += 1.0;
-    } else {
-        a[0] += 1.5;
-        a[1] -= 0.5;
+    let (w, e) = couette_rule(g, active, i, j);
+    let (w, e) = (w.weights(), e.weights());
+    [
+        (e[0] - w[0]) / g.dx,
+        (e[1] - w[1]) / g.dx,
+        (e[2] - w[2]) / g.dx,
+    ]
+}
+
+/// The Poiseuille rule of the face between cell `k` and its neighbour `n` (None: domain
+/// edge), stated once: the face coefficient is linear in eps,
+/// `c = w_k eps_k + w_n eps_n`, divided by the squared distance `d2` to where the neighbour's
+/// pressure sits. Returns `(w_k, w_n, neighbour)`, `neighbour` None where the pressure on the
+/// face is ambient:
+///
+/// * a neighbour with material: the arithmetic mean of eps (Venner & Lubrecht),
+///   w_k = w_n = 0.5 / d2;
+/// * the domain edge or a cell without material: P = 0 on the face, half a cell from the
+///   centre, so the flux eps_k (0 - P_k) / (dX / 2) over the cell's dX gives w_k = 2 / d2,
+///   w_n = 0.
+///
+/// The residual forms the face from it ([`face`]), the Jacobian differentiates it
+/// (`crate::reynolds::jacobian`).
+#[inline(always)]
+pub(crate) fn face_weights(active: &[bool], n: Option<usize>, d2: f64) -> (f64, f64, Option<usize>) {
+    match n {
+        Some(n) if active[n] => (0.5 / d2, 0.5 / d2, Some(n)),
+        _ => (2.0 / d2, 0.0, None),
     }
-    if first_cell {
-        a[0] -= 1.0;
-    } else if !g.second_order || i == 1 || !active[k - 2] {
-        a[1] -= 1.0;
-    } else {
-        a[1] -= 1.5;
-        a[2] += 0.5;
-    }
-    [a[0] / g.dx, a[1] / g.dx, a[2] / g.dx]
 }
 
 /// Poiseuille coefficient of the face between cell `k` and its neighbour `n` (None: domain edge),
-/// divided by the squared distance to where the neighbour's pressure sits; returns
-/// `(coefficient, neighbour pressure)`.
+/// divided by the squared distance to where the neighbour's pressure sits ([`face_weights`]);
+/// returns `(coefficient, neighbour pressure)`.
 #[inline(always)]
 pub(crate) fn face(f: &Fields, k: usize, n: Option<usize>, d2: f64) -> (f64, f64) {
-    match n {
-        Some(n) if f.active[n] => (0.5 * (f.eps[k] + f.eps[n]) / d2, f.p[n]),
-        // ambient pressure on the face, half a cell away
-        _ => (2.0 * f.eps[k] / d2, 0.0),
+    match face_weights(f.active, n, d2) {
+        (wk, wn, Some(n)) => (wk * f.eps[k] + wn * f.eps[n], f.p[n]),
+        (wk, _, None) => (wk * f.eps[k], 0.0),
     }
 }
 
@@ -163,6 +244,26 @@ pub(crate) fn neighbours(g: &ReynoldsGrid, i: usize, j: usize) -> [Option<usize>
     ]
 }
 
+/// The Poiseuille faces of cell `(i, j)`: `(direction, neighbour, d2)` with direction 0..4
+/// (west, east, south, north; a line contact, ny == 1, has only the x faces) and `d2` the
+/// squared cell size across the face.
+#[inline(always)]
+pub(crate) fn faces(
+    g: &ReynoldsGrid,
+    i: usize,
+    j: usize,
+) -> impl Iterator<Item = (usize, Option<usize>, f64)> {
+    let nb = neighbours(g, i, j);
+    let (dx2, dy2) = (g.dx * g.dx, g.dy * g.dy);
+    let d2 = [dx2, dx2, dy2, dy2];
+    let count = if g.ny == 1 { 2 } else { 4 };
+    nb.into_iter()
+        .zip(d2)
+        .enumerate()
+        .take(count)
+        .map(|(d, (n, d2))| (d, n, d2))
+}
+
 /// L(P) at one active cell: Poiseuille minus Couette (minus squeeze), per unit area.
 #[inline]
 pub(crate) fn operator_at(
@@ -173,10 +274,11 @@ pub(crate) fn operator_at(
     j: usize,
 ) -> f64 {
     let k = j * g.nx + i;
+    let pk = f.p[k];
     let nb = neighbours(g, i, j);
     let (dx2, dy2) = (g.dx * g.dx, g.dy * g.dy);
-    let pk = f.p[k];
     let mut pois = 0.0;
+    // the faces of `faces`, written out on the hot path
     for (d, &n) in nb.iter().enumerate() {
         if d >= 2 && g.ny == 1 {
             break;
@@ -184,7 +286,7 @@ pub(crate) fn operator_at(
         let (c, pn) = face(f, k, n, if d < 2 { dx2 } else { dy2 });
         pois += c * (pn - pk);
     }
-    let couette = (couette_east(g, f, i, j) - couette_west(g, f, i, j)) / g.dx;
+    let couette = couette_at(g, f, i, j);
     let squeeze = transient.map_or(0.0, |t| t.c0 * f.rho[k] * f.h[k] - t.history[k]);
     pois - couette - squeeze
 }
@@ -279,11 +381,9 @@ pub fn feature_transport(
             for m in a..e {
                 let k = row + m;
                 ge -= g.dx * storage[k] / speed;
-                let plain = if m == a || !g.second_order {
-                    depth[k]
-                } else {
-                    1.5 * depth[k] - 0.5 * depth[k - 1]
-                };
+                // the east face's upwind rule (`couette_rule`) on F
+                let east = couette_rule(g, active, m, j).1;
+                let plain = east.value(depth, k);
                 faces.push((ge, plain));
             }
             // G is known up to a constant: the one that puts it on the plain rule's face values
@@ -298,11 +398,9 @@ pub fn feature_transport(
             for (m, &(ge, _)) in (a..e).zip(faces.iter()) {
                 let k = row + m;
                 let ge = ge - c;
-                let tilde = if m == a || !g.second_order {
-                    ge
-                } else {
-                    (ge + 0.5 * prev) / 1.5
-                };
+                // the east face value of F~ is G: solve the upwind rule for F~ at this cell
+                let e = couette_rule(g, active, m, j).1.weights();
+                let tilde = (ge - e[1] * prev) / e[0];
                 shift[k] += tilde - depth[k];
                 prev = tilde;
             }
