@@ -17,7 +17,8 @@
 //! Preconditioner (right): per grid line j a banded matrix along x, the rows of the Reynolds
 //! Jacobian that [`crate::reynolds::jacobian::reynolds_row`] writes from the residual's own
 //! stencil, kept where they fall on the line:
-//! the Poiseuille tridiagonal with eps frozen, the wedge term's dependence on P through H
+//! the Poiseuille tridiagonal with eps frozen and through eps's dependence on P (locally and
+//! through the film), the wedge term's dependence on P through H
 //! (d(rho_i H_i)/dP_m = rho'_i H_i delta_im + rho_i Khat(i - m, 0) for |i - m| <= band, Khat the
 //! dimensionless kernel coefficient), differenced with the Couette upwind rule, identity rows on
 //! the active set; plus the Poiseuille coupling of each cell to the cells above and below it
@@ -692,7 +693,8 @@ impl System {
 /// on the Reynolds rows), i and l cell indices along the line: the local entries by
 /// [`LineSink::add`], the elastic coupling through the film of each cell by
 /// [`LineSink::add_kernel`] (khat[|i - l|] over the sink's band); with `y`, the entries of the
-/// cells below and above (the y faces' Poiseuille terms with their eps) into its two rows.
+/// cells below and above (the y faces' Poiseuille terms with their eps) into its two arrays
+/// (south, north: one entry per cell of the line).
 /// With the kernel over the whole line (ny == 1, [`DenseSink`]) this is the exact Jacobian
 /// dR/dP of the Newton step (without the H0 column and the load row).
 #[allow(clippy::too_many_arguments)]
@@ -750,6 +752,8 @@ impl<S: LineSink> jacobian::RowSink for LineRow<'_, S> {
                 **south += self.ck * v;
             } else if m == self.k + self.nx {
                 **north += self.ck * v;
+            } else {
+                debug_assert!(false, "a Reynolds row entry at cell {m} of row {}", self.k);
             }
         }
     }

@@ -176,7 +176,7 @@ mod tests {
     use crate::reynolds::residual::Transient;
 
     /// A small 2D problem with every branch of the stencil: cells without material (an inner
-    /// one and one on the inlet edge), the domain edges, the squeeze term, a Couette shift, and
+    /// one, one on the inlet edge and one on the south edge), the domain edges, the squeeze term, a Couette shift, and
     /// a film that depends on every pressure through a 2D kernel K(m, l).
     struct Problem {
         g: ReynoldsGrid,
@@ -257,17 +257,24 @@ mod tests {
         }
     }
 
-    /// A whole row of dF/dP: local entries, and the kernel entries spread by K(m, l).
+    /// A whole row of dF/dP: local entries, and the kernel entries spread by K(m, l); with
+    /// `only`, the entries of that term alone.
     struct Dense<'a> {
         pb: &'a Problem,
         row: Vec<f64>,
+        only: Option<Term>,
     }
 
     impl RowSink for Dense<'_> {
-        fn local(&mut self, _: Term, m: usize, v: f64) {
-            self.row[m] += v;
+        fn local(&mut self, t: Term, m: usize, v: f64) {
+            if self.only.is_none_or(|o| o == t) {
+                self.row[m] += v;
+            }
         }
-        fn kernel(&mut self, _: Term, m: usize, a: f64) {
+        fn kernel(&mut self, t: Term, m: usize, a: f64) {
+            if self.only.is_some_and(|o| o != t) {
+                return;
+            }
             for l in 0..self.row.len() {
                 if self.pb.active[l] {
                     self.row[l] += a * self.pb.kernel(m, l);
@@ -317,19 +324,42 @@ mod tests {
             let scale = fd.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
             assert!(scale > 1.0, "{scale}");
             for k in (0..n).filter(|&k| pb.active[k]) {
-                let mut sink = Dense {
-                    pb: &pb,
-                    row: vec![0.0; n],
+                let (i, j) = (k % pb.g.nx, k / pb.g.nx);
+                let row_of = |only: Option<Term>| {
+                    let mut sink = Dense {
+                        pb: &pb,
+                        row: vec![0.0; n],
+                        only,
+                    };
+                    reynolds_row(&pb.g, &lin, i, j, &mut sink);
+                    sink.row
                 };
-                reynolds_row(&pb.g, &lin, k % pb.g.nx, k / pb.g.nx, &mut sink);
-                for l in (0..n).filter(|&l| pb.active[l]) {
+                let row = row_of(None);
+                for l in 0..n {
+                    // the columns of cells without material are not unknowns: no entry there
+                    let want = if pb.active[l] { fd[k][l] } else { 0.0 };
                     assert!(
-                        (sink.row[l] - fd[k][l]).abs() < 1e-7 * scale,
-                        "second order {second}, row {k}, column {l}: {} against {}",
-                        sink.row[l],
-                        fd[k][l]
+                        (row[l] - want).abs() < 1e-7 * scale,
+                        "second order {second}, row {k}, column {l}: {} against {want}",
+                        row[l],
                     );
                 }
+                // the diagonal with eps frozen: the whole derivative less the entries through
+                // eps, with the kernel along the row (what `diagonal` is given)
+                let khat: Vec<f64> = (0..pb.g.nx).map(|d| pb.kernel(0, d)).collect();
+                let through_eps = row_of(Some(Term::PoiseuilleEps))[k];
+                let (pois, wedge) = diagonal(&pb.g, &lin, &khat, i, j);
+                assert!(
+                    (pois + wedge + through_eps - fd[k][k]).abs() < 1e-7 * scale,
+                    "second order {second}, diagonal {k}: {pois} + {wedge} + {through_eps} against {}",
+                    fd[k][k]
+                );
+                // and its Poiseuille part is the sum of the faces' coefficients
+                let faces: f64 = residual::faces(&pb.g, i, j)
+                    .map(|(_, nb, d2)| residual::face(&lin.f, k, nb, d2).0)
+                    .sum();
+                assert!((pois - faces).abs() < 1e-12 * faces, "{pois} {faces}");
+                assert_eq!(pois, row_of(Some(Term::Poiseuille))[k]);
             }
         }
     }
