@@ -212,3 +212,65 @@ fn a_height_map_file_equals_the_pit_it_describes() {
     let smooth = run(DRY);
     assert!((smooth.summary.max_pressure_pa - pmax).abs() > 1e-3 * pmax);
 }
+
+/// The contract lets every localized kind carry a `pattern` (interface.md: "same body, x, y,
+/// pattern keys"), a height map included: the 2 x 2 map of one depth on a 1 x 2 pattern gives
+/// the contact of the same pit on the same pattern (a scan found the pattern refused).
+#[test]
+fn a_patterned_height_map_equals_the_patterned_pit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (w, l, d) = (0.2e-3, 0.4e-3, 3e-6);
+    ndarray_npy::write_npy(
+        dir.path().join("flat.npy"),
+        &ndarray::Array2::<f64>::from_elem((2, 2), d),
+    )
+    .unwrap();
+    let pattern = "pattern = { rows = 1, columns = 2, row_pitch = 1e-3, column_pitch = 0.8e-3 }\n";
+    let map = format!(
+        "\n[[features]]\nkind = \"height-map\"\nfile = \"flat.npy\"\ndx = {w:e}\ndy = {l:e}\nx = 0.05e-3\ny = 0.0\n{pattern}"
+    );
+    let case_path = dir.path().join("case.toml");
+    let text = DRY.to_string() + &map;
+    std::fs::write(&case_path, &text).unwrap();
+    let case = parse_str(&text, &case_path.display().to_string(), &[]).expect("map case");
+    let from_map = solve(&case, &Silent).unwrap();
+    let from_pit = run(&(DRY.to_string() + &pit(1, w, l, d, 0.05e-3, 0.0) + pattern));
+    let pmax = from_pit.summary.max_pressure_pa;
+    let diff = from_map
+        .fields
+        .pressure
+        .iter()
+        .zip(&from_pit.fields.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-9 * pmax, "{diff}");
+    // and the second copy matters: one pit alone is another contact
+    let single = run(&(DRY.to_string() + &pit(1, w, l, d, 0.05e-3, 0.0)));
+    assert!((single.summary.max_pressure_pa - pmax).abs() > 1e-4 * pmax);
+}
+
+/// A .npy header may declare any shape: a 128-byte file declaring 10^6 x 10^6 float64 values
+/// made the reader ask for 8 TB and abort the program (exit 134, found by a scan). Its size is
+/// now checked against the file first, and the case is refused by `features[0].file`.
+#[test]
+fn a_height_map_declaring_more_than_its_file_holds_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut header = "{'descr': '<f8', 'fortran_order': False, 'shape': (1000000, 1000000), }".to_string();
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    std::fs::write(dir.path().join("huge.npy"), &bytes).unwrap();
+    let text = DRY.to_string() + "\n[[features]]\nkind = \"height-map\"\nfile = \"huge.npy\"\ndx = 1e-7\ndy = 1e-7\n";
+    let case_path = dir.path().join("case.toml");
+    match parse_str(&text, &case_path.display().to_string(), &[]) {
+        Err(ehl::Error::Case { key, message, .. }) => {
+            assert_eq!(key, "features[0].file");
+            assert!(message.contains("declares a shape"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -1257,6 +1257,73 @@ fn alignment(top: &Sec, point: bool) -> R<Alignment> {
     Ok(a)
 }
 
+/// Checks the array size a .npy file's header declares (its shape times the item size of its
+/// `descr`) against the bytes the file holds, before the reader allocates it: a header may
+/// declare any shape, and a crafted 128-byte file declaring 10^12 values made the reader ask
+/// for 8 TB and abort the program. Errors that the reader reports itself (a bad magic string,
+/// a wrong type) are left to it.
+fn npy_declared_size_fits(path: &std::path::Path) -> Result<(), String> {
+    use std::io::Read;
+    let len = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .map_err(|e| e.to_string())?
+        .take(1 << 16)
+        .read_to_end(&mut head)
+        .map_err(|e| e.to_string())?;
+    if head.len() < 10 || &head[..6] != b"\x93NUMPY" {
+        return Ok(());
+    }
+    let (start, header_len) = if head[6] == 1 {
+        (10usize, u16::from_le_bytes([head[8], head[9]]) as usize)
+    } else if head.len() >= 12 {
+        (12, u32::from_le_bytes([head[8], head[9], head[10], head[11]]) as usize)
+    } else {
+        return Ok(());
+    };
+    let Some(text) = head.get(start..start + header_len) else {
+        return Ok(());
+    };
+    let text = String::from_utf8_lossy(text);
+    let field = |key: &str| -> Option<String> {
+        let at = text.find(&format!("'{key}'"))? + key.len() + 2;
+        let rest = text[at..].trim_start().strip_prefix(':')?.trim_start();
+        Some(rest.to_string())
+    };
+    let Some(shape) = field("shape").and_then(|r| {
+        let r = r.strip_prefix('(')?;
+        Some(r[..r.find(')')?].to_string())
+    }) else {
+        return Ok(());
+    };
+    let item = field("descr")
+        .and_then(|r| {
+            let r = r.strip_prefix('\'')?;
+            let d = &r[..r.find('\'')?];
+            d.trim_start_matches(|c: char| !c.is_ascii_digit()).parse::<u64>().ok()
+        })
+        .unwrap_or(1);
+    let mut count: u64 = 1;
+    for dim in shape.split(',').map(str::trim).filter(|d| !d.is_empty()) {
+        let Ok(n) = dim.parse::<u64>() else {
+            return Ok(());
+        };
+        count = count
+            .checked_mul(n)
+            .ok_or_else(|| format!("its header declares a shape ({shape}) too large to hold"))?;
+    }
+    let need = count
+        .checked_mul(item)
+        .and_then(|b| b.checked_add((start + header_len) as u64))
+        .ok_or_else(|| format!("its header declares a shape ({shape}) too large to hold"))?;
+    if need > len {
+        return Err(format!(
+            "its header declares a shape ({shape}) of {count} values, {need} bytes with the header, but the file holds {len} bytes"
+        ));
+    }
+    Ok(())
+}
+
 /// A skew leaves a line contact only while the skewed roller's length projected on body 1's
 /// axis is longer than the contact is wide. Near pi/2 the axes cross and the contact becomes a
 /// point contact of crossed cylinders, which the line-contact model (its Hertz line scales and
@@ -1598,18 +1665,11 @@ fn features(
         };
         let shape = match kind {
             "height-map" => {
-                for k in [
-                    "width",
-                    "length",
-                    "depth",
-                    "pattern",
-                    "amplitude",
-                    "wavelength",
-                ] {
+                for k in ["width", "length", "depth", "amplitude", "wavelength"] {
                     forbid(
                         &s,
                         k,
-                        "is not used by a height-map feature (it has file, dx, dy, x, y)",
+                        "is not used by a height-map feature (it has file, dx, dy, x, y and an optional pattern)",
                     )?;
                 }
                 let name = required(
@@ -1624,6 +1684,12 @@ fn features(
                     .parent()
                     .unwrap_or(std::path::Path::new(""));
                 let at = base.join(name);
+                npy_declared_size_fits(&at).map_err(|e| {
+                    s.err(
+                        "file",
+                        format!("cannot read `{}` as a .npy height map: {e}", at.display()),
+                    )
+                })?;
                 let depths: ndarray::Array2<f64> = ndarray_npy::read_npy(&at).map_err(|e| {
                     s.err(
                         "file",
