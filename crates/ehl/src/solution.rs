@@ -113,7 +113,8 @@ pub struct Summary {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_orthogonal_shear_at_m: Option<[f64; 3]>,
     /// `[fatigue]`: the Ioannides-Harris integral summed over the chosen bodies
-    /// (Pa^c m^(3-h); a line contact per metre)
+    /// (m^3, the stress over 1 GPa and the depth over 1 mm, `stress::fatigue`; a line contact
+    /// m^2 per metre)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fatigue_integral: Option<f64>,
     /// `[fatigue]` with features: the same integral for smooth surfaces at the same conditions

@@ -2025,7 +2025,7 @@ fn stress(top: &Sec, kind: Kind, b: f64, transient: bool) -> R<Option<StressSpec
         _ => DepthSpacing::Geometric,
     };
     let friction = s
-        .non_negative("friction", "(Coulomb coefficient)")?
+        .non_negative("friction", "Coulomb coefficient")?
         .unwrap_or(0.0);
     if friction != 0.0 && kind == Kind::Ehl {
         return Err(s.err(
@@ -2090,9 +2090,9 @@ fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec
         _ => Criterion::VonMises,
     };
     let fatigue_limit = s.non_negative("fatigue_limit", "Pa")?.unwrap_or(0.0);
-    let weibull_slope = s.positive("weibull_slope", "")?.unwrap_or(1.1);
-    let stress_exponent = s.positive("stress_exponent", "")?.unwrap_or(31.0 / 3.0);
-    let depth_exponent = s.non_negative("depth_exponent", "")?.unwrap_or(0.0);
+    let weibull_slope = s.positive("weibull_slope", "dimensionless")?.unwrap_or(1.1);
+    let stress_exponent = s.positive("stress_exponent", "dimensionless")?.unwrap_or(31.0 / 3.0);
+    let depth_exponent = s.non_negative("depth_exponent", "dimensionless")?.unwrap_or(0.0);
     let dang_van = match s.table(
         "dang_van",
         "the Dang Van indicator over the passage: { alpha = 0.3, beta = 4.5e8 }",
@@ -2113,7 +2113,7 @@ fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec
             };
             let def = crate::stress::passage::DangVan::default();
             Some(crate::stress::passage::DangVan {
-                alpha: d.non_negative("alpha", "(dimensionless)")?.unwrap_or(def.alpha),
+                alpha: d.non_negative("alpha", "dimensionless")?.unwrap_or(def.alpha),
                 beta: d.positive("beta", "Pa")?.unwrap_or(def.beta),
             })
         }

@@ -589,7 +589,15 @@ pub fn summarise(case: &Case, analysis: &StressAnalysis, summary: &mut Summary) 
     let (v, at) = best(&|s| (s.max_orthogonal_shear_pa, s.max_orthogonal_shear_at_m));
     summary.max_orthogonal_shear_pa = Some(v);
     summary.max_orthogonal_shear_at_m = Some(at);
-    summary.fatigue_integral = case.fatigue.map(|_| total);
+    summary.fatigue_integral = case.fatigue.filter(|_| total.is_finite()).map(|_| total);
+    if case.fatigue.is_some() && !total.is_finite() {
+        summary.warnings.push(
+            "fatigue_integral and life_ratio left out: the integral overflows floating point with these fatigue.stress_exponent and fatigue.depth_exponent (the literature's are c = 9-12, h = 0-7/3)".into(),
+        );
+        for figures in per_body.iter_mut() {
+            figures.fatigue_integral = None;
+        }
+    }
     summary.stress_at_xp_m = analysis.step.map(|s| s.1);
     summary.stress = Some(per_body);
 }

@@ -21,7 +21,15 @@
 //!
 //! The integral is a sum over the stress grid's cells: each point (i, j, k) stands for the volume
 //! dx dy dz_k, dz_k reaching half-way to its neighbouring layers (the first from the surface).
-//! Units: Pa^c m^(3 - h) (a line contact: per metre of length, Pa^c m^(2 - h)).
+//! The stress enters over [`REFERENCE_STRESS`] (1 GPa) and the depth over [`REFERENCE_DEPTH`]
+//! (1 mm), so that the integral is a volume:
+//!
+//! I = sum <(sigma_eq - sigma_u) / 1 GPa>^c (z / 1 mm)^(-h) dV    (m^3; a line contact: m^2 per
+//! metre of length).
+//!
+//! The constants cancel in the life ratio and keep the integral within floating point: in Pa^c
+//! it overflowed from c ~ 31 on a contact at a few GPa (a scan: "summary figure
+//! 'fatigue_integral' is not finite" after the whole solve), and z^(-h) in metres from h ~ 50.
 
 use serde::Serialize;
 
@@ -67,6 +75,12 @@ impl Default for Params {
     }
 }
 
+/// The stress the integral's equivalent stress is measured in (Pa): 1 GPa.
+pub const REFERENCE_STRESS: f64 = 1e9;
+
+/// The depth the integral's depth weight is measured in (m): 1 mm.
+pub const REFERENCE_DEPTH: f64 = 1e-3;
+
 /// Thickness of each layer's slice of volume: from half-way to the layer above (the surface for
 /// the first) to half-way to the layer below (the last reaches as far below as half its spacing).
 pub fn layer_thickness(z: &[f64]) -> Vec<f64> {
@@ -86,19 +100,21 @@ pub fn layer_thickness(z: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// The Ioannides-Harris integral of the equivalent stress `eq` (Pa, one value per point, index
-/// `(k * ny + j) * nx + i`) at the depths `z` (m), on cells of area `cell_area` (m^2; a line
-/// contact: dx times 1 m).
+/// The Ioannides-Harris integral (see the module doc: stress over 1 GPa, depth over 1 mm; m^3)
+/// of the equivalent stress `eq` (Pa, one value per point, index `(k * ny + j) * nx + i`) at the
+/// depths `z` (m), on cells of area `cell_area` (m^2; a line contact: dx times 1 m). Infinite
+/// only for exponents far outside the literature's (c of 100 at 1000 GPa).
 pub fn integral(eq: &[f32], z: &[f64], cell_area: f64, params: &Params) -> f64 {
     let plane = eq.len() / z.len().max(1);
     let dz = layer_thickness(z);
     let mut total = 0.0;
     for (k, slice) in eq.chunks(plane).enumerate() {
-        let weight = cell_area * dz[k] / z[k].powf(params.depth_exponent);
+        let weight =
+            cell_area * dz[k] / (z[k] / REFERENCE_DEPTH).powf(params.depth_exponent);
         let s: f64 = slice
             .iter()
             .map(|&v| {
-                let excess = v as f64 - params.fatigue_limit;
+                let excess = (v as f64 - params.fatigue_limit) / REFERENCE_STRESS;
                 if excess > 0.0 {
                     excess.powf(params.stress_exponent)
                 } else {
@@ -136,10 +152,14 @@ mod tests {
         let eq = [1.0e9_f32, 2.0e9, 0.5e9, 3.0e9];
         let p = Params { fatigue_limit: 5e9, ..Params::default() };
         assert_eq!(integral(&eq, &z, 1.0, &p), 0.0);
-        // c = 1, h = 0, limit 0: sum of v dV with dz = [1.5, 1.0]
+        // c = 1, h = 0, limit 0: sum of (v / 1 GPa) dV with dz = [1.5, 1.0]
         let p = Params { stress_exponent: 1.0, ..Params::default() };
-        let want = 1.5 * 3.0e9 + 1.0 * 3.5e9;
-        assert!((integral(&eq, &z, 1.0, &p) - want).abs() < 1e-3);
+        let want = 1.5 * 3.0 + 1.0 * 3.5;
+        assert!((integral(&eq, &z, 1.0, &p) - want).abs() < 1e-12);
+        // h = 1: each layer weighed by (z / 1 mm)^-1
+        let p = Params { stress_exponent: 1.0, depth_exponent: 1.0, ..Params::default() };
+        let want = 1.5 * 3.0 / 1e3 + 1.0 * 3.5 / 2e3;
+        assert!((integral(&eq, &z, 1.0, &p) - want).abs() < 1e-12 * want);
         assert_eq!(life_ratio(2.0, 2.0, 1.1), 1.0);
         assert!((life_ratio(2.0, 1.0, 1.0) - 2.0).abs() < 1e-15);
     }
