@@ -227,6 +227,24 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
     let f = &transient.summary.passage.as_ref().unwrap()[0];
     assert!(f.max_dang_van.is_some() && f.max_von_mises_at_m.is_some());
     assert_eq!(f.evaluations, 104);
+    // every material column is sampled at least once (a scan found the first column of every
+    // run never sampled, NaN in all its maps: the body frame was a column too long)
+    assert!(p.contact_span.iter().all(|s| s[0].is_finite() && s[1].is_finite()));
+    assert!(maps.max_von_mises.iter().all(|v| v.is_finite()));
+    // and the summary's Dang Van maximum is over the columns that crossed the whole contact
+    let dvm = maps.dang_van.as_ref().unwrap();
+    let through = |m: usize| {
+        let s = p.contact_span[m];
+        s[0].min(s[1]) <= -b && s[0].max(s[1]) >= b
+    };
+    let best = (0..dvm.len())
+        .filter(|&i| through(i % nxb))
+        .map(|i| dvm[i] as f64)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(f.max_dang_van, Some(best));
+    let m_at = ((f.max_dang_van_at_m.unwrap()[0] - p.x_body(0)) / p.grid.dx).round() as usize;
+    assert!(through(m_at), "column {m_at}");
+    assert!(!through(0), "the first column enters the grid late in this run");
 }
 
 /// The passage accumulators' memory depends on the grid, the travel and the window, not on the

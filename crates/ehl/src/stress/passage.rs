@@ -121,9 +121,13 @@ pub fn bytes(points: usize, dang_van: bool) -> f64 {
 }
 
 /// Number of body-frame columns for a body moving at `speed` (m/s) during `duration` (s) over a
-/// contact grid of `nx` cells of `dx` (m).
+/// contact grid of `nx` cells of `dx` (m): the contact grid and the columns that come within
+/// half a cell of its end cell by the last instant, t = `duration` (always evaluated). With
+/// ceil(|u| T / dx) columns added, the first was left half a cell to a cell short of the grid
+/// whenever the travel was not near a whole number of cells, a column never sampled (NaN in
+/// every map; found by a scan).
 pub fn body_columns(nx: usize, dx: f64, speed: f64, duration: f64) -> usize {
-    let ext = (speed.abs() * duration / dx - 1e-9).ceil().max(0.0);
+    let ext = (speed.abs() * duration / dx - 0.5 - 1e-9).ceil().max(0.0);
     nx + ext as usize
 }
 
