@@ -41,6 +41,13 @@ pub const FIGURES: &[&str] = &[
     "mean_film_temperature_k",
     "flash_temperature_k",
     "heat_generated_w",
+    // [stress] and [fatigue]
+    "max_von_mises_pa",
+    "max_shear_pa",
+    "max_orthogonal_shear_pa",
+    "fatigue_integral",
+    "smooth_fatigue_integral",
+    "life_ratio",
 ];
 
 /// One `--vary KEY=SPEC`.
@@ -314,7 +321,9 @@ fn write_csv(dir: &Path, varies: &[Vary], pts: &[Point]) -> Result<usize> {
 }
 
 /// The figure a study is usually about, with its axis label and scale to display units.
-const PLOT_FIGURES: [(&str, &str, f64); 6] = [
+const PLOT_FIGURES: [(&str, &str, f64); 7] = [
+    // a study with [fatigue] and features is about the life they cost
+    ("life_ratio", "life against smooth surfaces (-)", 1.0),
     // a transient run's friction is read over the whole travel, not at its last step
     (
         "friction_coefficient_mean_over_travel",
@@ -387,7 +396,8 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         "max_hertz_pressure" | "youngs_modulus" | "shear_modulus" | "eyring_stress" => " (Pa)",
         "entrainment_speed" => " (m/s)",
         "radius" | "radius_y" | "length" | "crown_radius" | "edge_length" | "edge_radius"
-        | "axial_offset" => " (m)",
+        | "axial_offset" | "width" | "depth" | "amplitude" | "wavelength" | "x" | "y" | "dx"
+        | "dy" | "row_pitch" | "column_pitch" => " (m)",
         "tilt" | "skew" | "angle" => " (rad)",
         "viscosity" => " (Pa s)",
         "pressure_viscosity_coefficient" => " (1/Pa)",

@@ -26,7 +26,7 @@ fn sweep_skips_finished_points_and_rebuilds_the_csv() {
     write_summary(
         &w,
         "p000_force=1000",
-        r#"{"converged": true, "iterations": 12, "load_n": 1000.0, "max_pressure_pa": 1.2e9, "approach_m": 3.5e-6}"#,
+        r#"{"converged": true, "iterations": 12, "load_n": 1000.0, "max_pressure_pa": 1.2e9, "approach_m": 3.5e-6, "max_von_mises_pa": 7.1e8, "life_ratio": 0.97}"#,
     );
     write_summary(
         &w,
@@ -62,6 +62,9 @@ fn sweep_skips_finished_points_and_rebuilds_the_csv() {
     assert_eq!(rows[1][col("converged")], "true");
     assert_eq!(rows[1][col("iterations")], "12");
     assert_eq!(rows[1][col("approach_m")], "3.5e-6");
+    // the stress and fatigue figures are columns too (a scan found them missing)
+    assert_eq!(rows[1][col("max_von_mises_pa")].parse::<f64>().unwrap(), 7.1e8);
+    assert_eq!(rows[1][col("life_ratio")], "0.97");
     assert_eq!(
         rows[1][col("central_film_m")],
         "",
