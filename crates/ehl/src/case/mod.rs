@@ -97,8 +97,8 @@ pub mod schema;
 pub use model::*;
 pub use overrides::{check_key, parse_value, split_assignment};
 pub use resolve::{
-    DEFAULT_CELLS, DEFAULT_DRY_ITERATIONS, DEFAULT_EHL_ITERATIONS, MAX_CELLS, MAX_TRAVEL_STEPS,
-    MIN_CELLS_ACROSS_CONTACT,
+    DEFAULT_CELLS, DEFAULT_DRY_ITERATIONS, DEFAULT_EHL_ITERATIONS, MAX_CELLS,
+    MAX_PRESSURE_OVER_MODULUS, MAX_TRAVEL_STEPS, MIN_CELLS_ACROSS_CONTACT,
 };
 
 use crate::{Error, Result};

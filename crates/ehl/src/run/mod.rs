@@ -476,6 +476,7 @@ pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink)
     edge_pressure_warnings(case, &geometry, &mut solution);
     friction_warning(case, &mut solution.summary);
     inlet_warning(case, &mut solution);
+    elastic_range_warning(case, &mut solution.summary);
     add_stress(case, &mut solution, progress)?;
     solution.summary.wall_time_s = start.elapsed().as_secs_f64();
     progress.report(1.0, "done");
@@ -729,6 +730,24 @@ fn inlet_warning(case: &Case, solution: &mut Solution) {
         solution.summary.warnings.push(format!(
             "the central film is {ratio:.2} of the full-regime fit's {:.3e} m (Barus, incompressible) at Moes M = {m:.3}: grid.x_min = {} b may cut the inlet short, or {cells:.0} cells across the Hertz width (grid.nx) may not resolve the film; widen the inlet (grid.x_min = -4 or less), refine the grid and compare",
             estimate, case.grid.x_min
+        ));
+    }
+}
+
+/// A warning when the solved pressure (the last step's, or the largest over the travel) leaves
+/// the range the contact models hold for, p / E' above
+/// [`crate::case::MAX_PRESSURE_OVER_MODULUS`]: the case's Hertz pressure is checked against it
+/// before solving, but a sharp feature concentrates the load further (a scan: a bump of slope ~4
+/// on a dry ball solved to 139 GPa, p / E' = 0.6, without a word).
+fn elastic_range_warning(case: &Case, s: &mut Summary) {
+    let e_red = case.reduced_modulus();
+    let peak = s.max_pressure_pa.max(s.max_pressure_over_travel_pa.unwrap_or(0.0));
+    let ratio = peak / e_red;
+    if ratio > crate::case::MAX_PRESSURE_OVER_MODULUS {
+        s.warnings.push(format!(
+            "the pressure peaks at {:.3e} Pa, {ratio:.2} times the reduced modulus E' = {e_red:.3e} Pa: beyond p / E' = {} the half-space and linear elasticity no longer hold (steel yields near 0.02); a feature sharper than the grid or steeper than the small-slope gap assumes is the likely cause",
+            peak,
+            crate::case::MAX_PRESSURE_OVER_MODULUS
         ));
     }
 }
