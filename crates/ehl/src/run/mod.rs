@@ -298,11 +298,11 @@ pub fn check_memory(
         return Err((
             est.key.to_string(),
             format!(
-                "the frames kept of a transient run on {} x {} cells need about {:.2} GB in all (estimate), more than the {:.2} GB of {source}; keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+                "the frames kept of a transient run on {} x {} cells need about {} in all (estimate), more than the {} of {source}; keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
                 case.grid.nx,
                 case.grid.ny,
-                est.bytes / 1e9,
-                limit / 1e9
+                bytes_text(est.bytes),
+                bytes_text(limit)
             ),
         ));
     }
@@ -310,24 +310,47 @@ pub fn check_memory(
         return Err((
             est.key.to_string(),
             format!(
-                "the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {} x {} cells extended by the travel, times the window's layers) need about {:.2} GB in all (estimate), more than the {:.2} GB of {source}; take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (37 of the 40 f32 per point), shorten motion.travel, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+                "the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {} x {} cells extended by the travel, times the window's layers) need about {} in all (estimate), more than the {} of {source}; take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (13 of the 16 f32 per point), shorten motion.travel, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
                 case.grid.nx,
                 case.grid.ny,
-                est.bytes / 1e9,
-                limit / 1e9
+                bytes_text(est.bytes),
+                bytes_text(limit)
+            ),
+        ));
+    }
+    if est.key == "stress.layers" {
+        let layers = case.stress.as_ref().map_or(0, |s| s.layers);
+        return Err((
+            est.key.to_string(),
+            format!(
+                "the stress field of {layers} layers below {} x {} cells needs about {} (estimate), more than the {} of {source}; take fewer stress.layers (the memory grows with nx * ny * layers), one body (stress.body = 1 or 2), fewer cells, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+                case.grid.nx,
+                case.grid.ny,
+                bytes_text(est.bytes),
+                bytes_text(limit)
             ),
         ));
     }
     Err((
         est.key.to_string(),
         format!(
-            "{kind} solve on nx x ny = {} x {} cells needs about {:.2} GB (estimate, good to a factor 2), more than the {:.2} GB of {source}; use fewer cells (the memory grows with nx * ny), or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
+            "{kind} solve on nx x ny = {} x {} cells needs about {} (estimate, good to a factor 2), more than the {} of {source}; use fewer cells (the memory grows with nx * ny), or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
             case.grid.nx,
             case.grid.ny,
-            est.bytes / 1e9,
-            limit / 1e9
+            bytes_text(est.bytes),
+            bytes_text(limit)
         ),
     ))
+}
+
+/// A byte count for a message: GB with two decimals from 0.1 GB, MB below (a limit of 1 MB
+/// read "0.00 GB").
+fn bytes_text(b: f64) -> String {
+    if b >= 1e8 {
+        format!("{:.2} GB", b / 1e9)
+    } else {
+        format!("{:.1} MB", b / 1e6)
+    }
 }
 
 /// Index and value of the largest entry.
@@ -1091,6 +1114,17 @@ mod tests {
         assert_eq!(k, "grid.nx");
         assert!(m.contains("GB") && m.contains("EHL_MEMORY_LIMIT"), "{m}");
         assert!(check_memory(&small, 8e9, "a test limit").is_ok());
+        // a deep stress field names stress.layers and says so (a scan found its message
+        // telling to use fewer cells); a small limit reads in MB, not "0.00 GB"
+        let mut deep = crate::case::parse_str(&text, "c.toml", &["stress={ layers = 8 }".into()]).unwrap();
+        deep.grid.nx = 1024;
+        deep.grid.ny = 1024;
+        deep.stress.as_mut().unwrap().layers = 1024;
+        let (k, m) = check_memory(&deep, 8e9, "a test limit").unwrap_err();
+        assert_eq!(k, "stress.layers");
+        assert!(m.contains("fewer stress.layers"), "{m}");
+        let (_, m) = check_memory(&small, 1e6, "a test limit").unwrap_err();
+        assert!(m.contains("1.0 MB"), "{m}");
         // a dry solve needs far less per cell
         let mut dry = big.clone();
         dry.kind = Kind::Dry;
