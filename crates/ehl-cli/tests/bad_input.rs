@@ -457,12 +457,12 @@ fn features_outside_the_domain() {
     Work::new(&(DRY.to_string() + &pit.replace("x = 0.0", "x = 5e-3"))).expect_error(
         &[],
         "features[0].x",
-        &["outside the grid", "x = 4.95 .. 5.05 mm"],
+        &["wholly inside the grid", "x = 4.95 .. 5.05 mm"],
     );
     Work::new(&(DRY.to_string() + pit + &pit.replace("y = 0.0", "y = 1.9e-3"))).expect_error(
         &[],
         "features[1].y",
-        &["outside the grid"],
+        &["wholly inside the grid"],
     );
     // a misspelt feature key
     Work::new(&(DRY.to_string() + &pit.replace("depth", "dept"))).expect_error(

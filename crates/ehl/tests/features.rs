@@ -289,3 +289,26 @@ fn a_pressure_beyond_the_elastic_range_is_warned() {
     let smooth = run(ball);
     assert!(!warned(&smooth), "{:?}", smooth.summary.warnings);
 }
+
+/// A feature whose travel never brings it onto the grid leaves the run smooth, and the summary
+/// says so (a scan found a dent travelling from -5 to -4 mm towards a contact within +-0.5 mm
+/// run and reported without a word); the example's own travel through the contact is not
+/// warned.
+#[test]
+fn a_feature_that_never_reaches_the_grid_is_warned() {
+    let path = format!("{}/../../examples/ehl_transient_ball_dent.toml", env!("CARGO_MANIFEST_DIR"));
+    let solve = |sets: &[&str]| {
+        let mut all: Vec<String> = ["grid.nx=32", "grid.ny=32", "output.snapshots=[]"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        all.extend(sets.iter().map(|s| s.to_string()));
+        let case = ehl::case::load_file(std::path::Path::new(&path), &all).unwrap();
+        solve(&case, &Silent).unwrap().summary
+    };
+    let never = |s: &ehl::solution::Summary| s.warnings.iter().any(|w| w.contains("never comes onto the grid"));
+    let away = solve(&["features[0].x=-5e-3", "motion.travel={from=-5e-3,to=-4e-3,steps=10}"]);
+    assert!(never(&away), "{:?}", away.warnings);
+    let through = solve(&["motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}"]);
+    assert!(!never(&through), "{:?}", through.warnings);
+}

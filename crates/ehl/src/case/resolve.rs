@@ -1858,7 +1858,7 @@ fn features(
             return Err(s.err(
                 "x",
                 format!(
-                    "the feature lies outside the grid: it spans x = {} .. {} mm but the grid covers x = {} .. {} mm (grid.x_min .. x_max = {} .. {} Hertz half-widths of {} mm)",
+                    "the feature must lie wholly inside the grid in a steady run: it spans x = {} .. {} mm but the grid covers x = {} .. {} mm (grid.x_min .. x_max = {} .. {} Hertz half-widths of {} mm)",
                     mm(x - hx), mm(x + hx), mm(xlo), mm(xhi), fmt_num(g.x_min), fmt_num(g.x_max), mm(b)
                 ),
             ));
@@ -1867,7 +1867,7 @@ fn features(
             return Err(s.err(
                 "y",
                 format!(
-                    "the feature lies outside the grid: it spans y = {} .. {} mm but the grid covers y = {} .. {} mm",
+                    "the feature must lie wholly inside the grid: it spans y = {} .. {} mm but the grid covers y = {} .. {} mm",
                     mm(y - hy), mm(y + hy), mm(ylo), mm(yhi)
                 ),
             ));
@@ -1876,7 +1876,9 @@ fn features(
         if let Some(p) = pattern {
             feature = feature.with_pattern(p);
         }
-        feature.check().map_err(|m| s.err("kind", m))?;
+        // a height map's own faults (its nodes, its depths) are its file's
+        let faulty = if matches!(feature.shape, FeatureShape::HeightMap(_)) { "file" } else { "kind" };
+        feature.check().map_err(|m| s.err(faulty, m))?;
         let mut table = t.clone();
         table.insert("body".into(), Value::Integer(body as i64));
         out.push(FeatureSpec {
@@ -2078,8 +2080,9 @@ fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec
         table: t,
     };
     if !has_stress {
-        return Err(s.err(
-            "criterion",
+        return Err(case_err(
+            top.file,
+            "fatigue",
             "[fatigue] needs the stress below the surface: add a [stress] table (e.g. [stress] with depth = 3.0, layers = 48)",
         ));
     }

@@ -448,7 +448,7 @@ fn features_are_resolved_and_checked() {
     assert_eq!(k, "features[0].width");
     let (k, m) = err(&(ROLLERS.to_string() + pit), &["features[0].x=0.01"]);
     assert_eq!(k, "features[0].x");
-    assert!(m.contains("outside the grid"), "{m}");
+    assert!(m.contains("wholly inside the grid"), "{m}");
     let (k, _) = err(&(ROLLERS.to_string() + pit), &["features[0].y=-0.0019"]);
     assert_eq!(k, "features[0].y");
     let (k, m) = err(

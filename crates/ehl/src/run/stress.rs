@@ -580,7 +580,8 @@ pub fn summarise(case: &Case, analysis: &StressAnalysis, summary: &mut Summary) 
             ("maximum shear", &b.peak_max_shear),
             ("orthogonal shear |tau_xz|", &b.peak_orthogonal_shear),
         ] {
-            if peak.layer == 0 && peak.value > 0.0 {
+            // (one layer is no depth profile: its maximum says nothing about the surface)
+            if peak.layer == 0 && peak.value > 0.0 && b.field.z.len() > 1 {
                 summary.warnings.push(format!(
                     "the {name} maximum of body {} lies on the first layer below the surface (z = {:.3e} m): it may sit at the surface itself (sliding friction above about 0.3, or a sharp feature edge); refine with more stress.layers or a finer grid to locate it",
                     b.body, peak.at[2]

@@ -469,6 +469,23 @@ pub(super) fn solve(
             "the friction integral failed at {friction_failures} converged step(s); their friction_coefficient cells in timeline.csv are empty"
         ));
     }
+    // a feature that never comes onto the grid leaves the run smooth (a scan: a pit travelling
+    // from -5 to -4 mm towards a contact within +-0.5 mm, run and reported without a word)
+    let duration = kin.dt * kin.steps as f64;
+    let (xlo, xhi) = (grid.x_min, grid.x_min + grid.nx as f64 * grid.dx);
+    for (i, f) in case.features.iter().enumerate() {
+        let Some((a, b)) = f.feature.x_span() else {
+            continue;
+        };
+        let u = case.motion.as_ref().map_or(0.0, |m| if f.body == 1 { m.u1() } else { m.u2() });
+        let s = u * duration;
+        let (lo, hi) = (a + s.min(0.0), b + s.max(0.0));
+        if hi <= xlo || lo >= xhi {
+            summary.warnings.push(format!(
+                "features[{i}] never comes onto the grid: over the travel it covers x = {lo:.4e} .. {hi:.4e} m, the grid x = {xlo:.4e} .. {xhi:.4e} m, so the run is that of smooth surfaces; move features[{i}].x or lengthen motion.travel"
+            ));
+        }
+    }
     let cells = kin.xp_speed.abs() * kin.dt / grid.dx;
     if let Some(steps) =
         crate::reference::check::steps_for_one_cell(!case.features.is_empty(), kin.steps, cells)

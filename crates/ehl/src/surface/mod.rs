@@ -396,6 +396,24 @@ impl Feature {
         Some((yc + lo - half, yc + hi + half))
     }
 
+    /// The range of x (m) the feature covers at its start position, all copies of a pattern
+    /// included; `None` for a waviness (it covers the whole body).
+    pub fn x_span(&self) -> Option<(f64, f64)> {
+        let half = match &self.shape {
+            FeatureShape::Pit { width, .. } | FeatureShape::Dent { width, .. } => 0.5 * width,
+            FeatureShape::Waviness { .. } => return None,
+            FeatureShape::HeightMap(map) => map.half_extent().0,
+        };
+        let (lo, hi) = self
+            .copies()
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(ox, _)| {
+                (a.min(ox), b.max(ox))
+            });
+        let xc = self.centre.0;
+        Some((xc + lo - half, xc + hi + half))
+    }
+
     /// Offsets of the copies from `centre` (one `(0, 0)` without a pattern).
     fn copies(&self) -> Vec<(f64, f64)> {
         match &self.pattern {
