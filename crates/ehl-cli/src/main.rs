@@ -108,7 +108,8 @@ struct SweepArgs {
     #[arg(long, value_name = "KEY=SPEC", required = true, value_parser = sweep::Vary::parse)]
     vary: Vec<sweep::Vary>,
     /// Output folder [default: out/<case file stem>-sweep]. Never replaced as a whole; its point
-    /// folders are (only those ehl wrote, see `ehl run --help`).
+    /// folders are (only those ehl wrote, see `ehl run --help`). It keeps a lock file,
+    /// .sweep.lock, that shards writing sweep.csv take in turn.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Points solved at the same time [default: the number of CPUs].
