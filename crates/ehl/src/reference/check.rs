@@ -52,6 +52,28 @@ pub struct CheckReport {
     pub transient: Option<TransientCheck>,
     /// thermal runs (`[thermal]`): the thermal loading and the classical film reductions
     pub thermal: Option<ThermalCheck>,
+    /// `[stress]` (and `[fatigue]`): the depth grid, its memory and the fatigue settings
+    pub stress: Option<StressCheck>,
+    /// the run's whole memory estimate (bytes) and the limit it is checked against
+    pub memory: (f64, f64),
+}
+
+/// The `[stress]` and `[fatigue]` figures of a case, as `ehl check` prints them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StressCheck {
+    pub bodies: Vec<u8>,
+    pub layers: usize,
+    /// deepest layer (m) and in units of b
+    pub depth_m: f64,
+    pub depth_b: f64,
+    /// shallowest layer (m)
+    pub first_m: f64,
+    /// transient runs: the passage window's depth (m) and layers, and its accumulators (bytes)
+    pub window: Option<(f64, usize, f64)>,
+    /// `[fatigue]`: the criterion and the exponents (c, h, e)
+    pub fatigue: Option<(String, f64, f64, f64)>,
+    /// `fatigue.dang_van` (alpha, beta in Pa)
+    pub dang_van: Option<(f64, f64)>,
 }
 
 /// The thermal figures of a `[thermal]` case, as `ehl check` prints them.
@@ -162,7 +184,43 @@ pub fn check_report(case: &Case) -> CheckReport {
         },
         transient: None,
         thermal: None,
+        stress: None,
+        memory: (
+            crate::run::memory_estimate(case).bytes,
+            crate::run::memory_limit().0,
+        ),
     };
+    if let Some(spec) = &case.stress {
+        let line = case.is_infinite_line();
+        let dy = if line { f64::INFINITY } else { grid.dy };
+        let z = spec.depths(grid.dx, dy);
+        let window = if case.motion.as_ref().is_some_and(|m| m.travel.is_some()) {
+            let w = spec.window_depths(grid.dx, dy);
+            Some((
+                w.last().copied().unwrap_or(0.0),
+                w.len(),
+                crate::run::stress::passage_memory(case),
+            ))
+        } else {
+            None
+        };
+        report.stress = Some(StressCheck {
+            bodies: spec.bodies.clone(),
+            layers: z.len(),
+            depth_m: spec.depth_m,
+            depth_b: spec.depth_m / report.hertz.b,
+            first_m: z.first().copied().unwrap_or(0.0),
+            window,
+            fatigue: case.fatigue.map(|f| {
+                let name = serde_json::to_value(f.criterion)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default();
+                (name, f.stress_exponent, f.depth_exponent, f.weibull_slope)
+            }),
+            dang_van: case.fatigue.and_then(|f| f.dang_van).map(|d| (d.alpha, d.beta)),
+        });
+    }
     if let (Some(kin), Some(m)) = (crate::run::transient::kinematics(case), &case.motion) {
         let est = crate::run::memory_estimate(case);
         // what `ehl run` keeps: it streams the frames to disk
@@ -456,6 +514,52 @@ impl fmt::Display for CheckReport {
                 "",
             )?;
         }
+        if let Some(st) = &self.stress {
+            writeln!(f, "stress below the surface ([stress])")?;
+            let bodies: Vec<String> = st.bodies.iter().map(|b| b.to_string()).collect();
+            row(f, "bodies", bodies.join(", "), "")?;
+            row(f, "layers", st.layers.to_string(), "")?;
+            row(
+                f,
+                "depths",
+                format!("{} .. {}", fixed(st.first_m * 1e6, 3), fixed(st.depth_m * 1e6, 2)),
+                "um",
+            )?;
+            row(f, "deepest layer over b", fixed(st.depth_b, 2), "")?;
+            if let Some((w, layers, bytes)) = st.window {
+                row(
+                    f,
+                    "passage window (layers)",
+                    format!("{} ({layers})", fixed(w * 1e6, 2)),
+                    "um",
+                )?;
+                row(f, "passage accumulators", fixed(bytes / 1e6, 1), "MB")?;
+            }
+            if let Some((name, c, h, e)) = &st.fatigue {
+                row(f, "fatigue criterion", name.clone(), "")?;
+                row(
+                    f,
+                    "exponents c, h, Weibull e",
+                    format!("{}, {}, {}", fixed(*c, 3), fixed(*h, 3), fixed(*e, 2)),
+                    "",
+                )?;
+            }
+            if let Some((alpha, beta)) = st.dang_van {
+                row(
+                    f,
+                    "Dang Van alpha, beta",
+                    format!("{}, {}", fixed(alpha, 3), fixed(beta / 1e6, 1)),
+                    "-, MPa",
+                )?;
+            }
+        }
+        writeln!(f, "memory")?;
+        row(
+            f,
+            "estimate (limit)",
+            format!("{} ({})", fixed(self.memory.0 / 1e6, 1), fixed(self.memory.1 / 1e6, 0)),
+            "MB",
+        )?;
         if let Some(t) = &self.thermal {
             writeln!(f, "thermal ([thermal])")?;
             row(
@@ -706,5 +810,29 @@ mod tests {
         assert!((r.cells_across_y.unwrap() - 128.0 / 3.0).abs() < 1e-9);
         let text = r.to_string();
         assert!(text.contains("circular point contact") && text.contains("a_y"));
+    }
+}
+
+#[cfg(test)]
+mod stress_tests {
+    /// `ehl check` reports the `[stress]` depth grid and the `[fatigue]` settings (a scan found
+    /// it silent on both): the example line with the defaults, 3 b deep, c = 31/3.
+    #[test]
+    fn the_stress_tables_are_reported() {
+        let path = format!("{}/../../examples/stress_line_sliding.toml", env!("CARGO_MANIFEST_DIR"));
+        let case = crate::case::load_file(std::path::Path::new(&path), &["fatigue={}".to_string()])
+            .unwrap();
+        let r = super::check_report(&case);
+        let s = r.stress.as_ref().expect("a [stress] case");
+        let spec = case.stress.as_ref().unwrap();
+        assert_eq!(s.layers, spec.layers);
+        assert!((s.depth_b - spec.depth_m / r.hertz.b).abs() < 1e-12);
+        let (name, c, _, _) = s.fatigue.clone().unwrap();
+        assert_eq!(name, "von-mises");
+        assert!((c - 31.0 / 3.0).abs() < 1e-12);
+        assert!(s.window.is_none(), "a steady case has no passage window");
+        let text = r.to_string();
+        assert!(text.contains("stress below the surface") && text.contains("fatigue criterion"), "{text}");
+        assert!(r.memory.0 > 0.0 && r.memory.0 < r.memory.1);
     }
 }
