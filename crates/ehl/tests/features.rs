@@ -181,36 +181,44 @@ fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
 /// checked).
 #[test]
 fn a_height_map_file_equals_the_pit_it_describes() {
-    let dir = tempfile::tempdir().unwrap();
     let (w, l, d) = (0.3e-3, 0.6e-3, 3e-6);
-    std::fs::create_dir(dir.path().join("maps")).unwrap();
-    ndarray_npy::write_npy(
-        dir.path().join("maps/flat.npy"),
-        &ndarray::Array2::<f64>::from_elem((2, 2), d),
-    )
-    .unwrap();
     // dy spans the length, dx the width; off-centre, so a wrong centre would show
     let map = format!(
         "\n[[features]]\nkind = \"height-map\"\nfile = \"maps/flat.npy\"\ndx = {w:e}\ndy = {l:e}\nx = 0.1e-3\ny = 0.5e-3\n"
     );
-    let case_path = dir.path().join("case.toml");
-    let text = DRY.to_string() + &map;
-    std::fs::write(&case_path, &text).unwrap();
-    let case = parse_str(&text, &case_path.display().to_string(), &[]).expect("map case");
-    let from_map = solve(&case, &Silent).unwrap();
+    let from_map = solve_with_map("maps/flat.npy", d, &map);
     let from_pit = run(&(DRY.to_string() + &pit(1, w, l, d, 0.1e-3, 0.5e-3)));
     let pmax = from_pit.summary.max_pressure_pa;
-    let diff = from_map
-        .fields
-        .pressure
-        .iter()
-        .zip(&from_pit.fields.pressure)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let diff = largest_pressure_difference(&from_map, &from_pit);
     assert!(diff < 1e-9 * pmax, "{diff}");
     // and the pit is not the smooth contact
     let smooth = run(DRY);
     assert!((smooth.summary.max_pressure_pa - pmax).abs() > 1e-3 * pmax);
+}
+
+/// DRY with the feature text `map`, whose `.npy` file `file` (a path relative to the case)
+/// holds a 2 x 2 map of the one depth `d` (m): by its bilinear interpolation, a flat-bottomed
+/// pit dx x dy.
+fn solve_with_map(file: &str, d: f64, map: &str) -> Solution {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(file);
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    ndarray_npy::write_npy(&path, &ndarray::Array2::<f64>::from_elem((2, 2), d)).unwrap();
+    let case_path = dir.path().join("case.toml");
+    let text = DRY.to_string() + map;
+    std::fs::write(&case_path, &text).unwrap();
+    let case = parse_str(&text, &case_path.display().to_string(), &[]).expect("map case");
+    solve(&case, &Silent).unwrap()
+}
+
+/// The largest pressure difference between two solutions on one grid (Pa).
+fn largest_pressure_difference(a: &Solution, b: &Solution) -> f64 {
+    a.fields
+        .pressure
+        .iter()
+        .zip(&b.fields.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
 }
 
 /// The contract lets every localized kind carry a `pattern` (interface.md: "same body, x, y,
@@ -218,31 +226,15 @@ fn a_height_map_file_equals_the_pit_it_describes() {
 /// the contact of the same pit on the same pattern (a scan found the pattern refused).
 #[test]
 fn a_patterned_height_map_equals_the_patterned_pit() {
-    let dir = tempfile::tempdir().unwrap();
     let (w, l, d) = (0.2e-3, 0.4e-3, 3e-6);
-    ndarray_npy::write_npy(
-        dir.path().join("flat.npy"),
-        &ndarray::Array2::<f64>::from_elem((2, 2), d),
-    )
-    .unwrap();
     let pattern = "pattern = { rows = 1, columns = 2, row_pitch = 1e-3, column_pitch = 0.8e-3 }\n";
     let map = format!(
         "\n[[features]]\nkind = \"height-map\"\nfile = \"flat.npy\"\ndx = {w:e}\ndy = {l:e}\nx = 0.05e-3\ny = 0.0\n{pattern}"
     );
-    let case_path = dir.path().join("case.toml");
-    let text = DRY.to_string() + &map;
-    std::fs::write(&case_path, &text).unwrap();
-    let case = parse_str(&text, &case_path.display().to_string(), &[]).expect("map case");
-    let from_map = solve(&case, &Silent).unwrap();
+    let from_map = solve_with_map("flat.npy", d, &map);
     let from_pit = run(&(DRY.to_string() + &pit(1, w, l, d, 0.05e-3, 0.0) + pattern));
     let pmax = from_pit.summary.max_pressure_pa;
-    let diff = from_map
-        .fields
-        .pressure
-        .iter()
-        .zip(&from_pit.fields.pressure)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let diff = largest_pressure_difference(&from_map, &from_pit);
     assert!(diff < 1e-9 * pmax, "{diff}");
     // and the second copy matters: one pit alone is another contact
     let single = run(&(DRY.to_string() + &pit(1, w, l, d, 0.05e-3, 0.0)));

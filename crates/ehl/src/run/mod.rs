@@ -294,50 +294,31 @@ pub fn check_memory(
     } else {
         "a dry"
     };
-    if est.key == "output.frames_every" {
-        return Err((
-            est.key.to_string(),
-            format!(
-                "the frames kept of a transient run on {} x {} cells need about {} in all (estimate), more than the {} of {source}; keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
-                case.grid.nx,
-                case.grid.ny,
-                bytes_text(est.bytes),
-                bytes_text(limit)
-            ),
-        ));
-    }
-    if est.key == "stress.window" {
-        return Err((
-            est.key.to_string(),
-            format!(
-                "the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {} x {} cells extended by the travel, times the window's layers) need about {} in all (estimate), more than the {} of {source}; take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (13 of the 16 f32 per point), shorten motion.travel, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
-                case.grid.nx,
-                case.grid.ny,
-                bytes_text(est.bytes),
-                bytes_text(limit)
-            ),
-        ));
-    }
-    if est.key == "stress.layers" {
-        let layers = case.stress.as_ref().map_or(0, |s| s.layers);
-        return Err((
-            est.key.to_string(),
-            format!(
-                "the stress field of {layers} layers below {} x {} cells needs about {} (estimate), more than the {} of {source}; take fewer stress.layers (the memory grows with nx * ny * layers), one body (stress.body = 1 or 2), fewer cells, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
-                case.grid.nx,
-                case.grid.ny,
-                bytes_text(est.bytes),
-                bytes_text(limit)
-            ),
-        ));
-    }
+    let (nx, ny) = (case.grid.nx, case.grid.ny);
+    let layers = case.stress.as_ref().map_or(0, |s| s.layers);
+    // what needs the memory, and what to change
+    let (what, cure) = match est.key {
+        "output.frames_every" => (
+            format!("the frames kept of a transient run on {nx} x {ny} cells need about {} in all (estimate)", bytes_text(est.bytes)),
+            "keep fewer frames (a larger output.frames_every, or leave it out to let ehl choose), take fewer motion.travel.steps",
+        ),
+        "stress.window" => (
+            format!("the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {nx} x {ny} cells extended by the travel, times the window's layers) need about {} in all (estimate)", bytes_text(est.bytes)),
+            "take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (13 of the 16 f32 per point), shorten motion.travel",
+        ),
+        "stress.layers" => (
+            format!("the stress field of {layers} layers below {nx} x {ny} cells needs about {} (estimate)", bytes_text(est.bytes)),
+            "take fewer stress.layers (the memory grows with nx * ny * layers), one body (stress.body = 1 or 2), fewer cells",
+        ),
+        _ => (
+            format!("{kind} solve on nx x ny = {nx} x {ny} cells needs about {} (estimate, good to a factor 2)", bytes_text(est.bytes)),
+            "use fewer cells (the memory grows with nx * ny)",
+        ),
+    };
     Err((
         est.key.to_string(),
         format!(
-            "{kind} solve on nx x ny = {} x {} cells needs about {} (estimate, good to a factor 2), more than the {} of {source}; use fewer cells (the memory grows with nx * ny), or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
-            case.grid.nx,
-            case.grid.ny,
-            bytes_text(est.bytes),
+            "{what}, more than the {} of {source}; {cure}, or set {MEMORY_LIMIT_ENV} (bytes) to allow more",
             bytes_text(limit)
         ),
     ))

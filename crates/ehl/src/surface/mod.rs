@@ -379,39 +379,39 @@ impl Feature {
     /// The range of y (m) the feature covers, all copies of a pattern included; `None` when it
     /// is unbounded along y (a transverse groove, a waviness).
     pub fn y_span(&self) -> Option<(f64, f64)> {
-        let half = match &self.shape {
-            FeatureShape::Pit { length, .. } | FeatureShape::Dent { length, .. } => {
-                length.is_finite().then_some(0.5 * length)?
-            }
-            FeatureShape::Waviness { .. } => return None,
-            FeatureShape::HeightMap(map) => map.half_extent().1,
-        };
-        let (lo, hi) = self
-            .copies()
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, oy)| {
-                (a.min(oy), b.max(oy))
-            });
-        let yc = self.centre.1;
-        Some((yc + lo - half, yc + hi + half))
+        self.span(1)
     }
 
     /// The range of x (m) the feature covers at its start position, all copies of a pattern
     /// included; `None` for a waviness (it covers the whole body).
     pub fn x_span(&self) -> Option<(f64, f64)> {
+        self.span(0)
+    }
+
+    /// The range along x (`axis` 0) or y (1) of [`Self::x_span`] and [`Self::y_span`].
+    fn span(&self, axis: usize) -> Option<(f64, f64)> {
         let half = match &self.shape {
-            FeatureShape::Pit { width, .. } | FeatureShape::Dent { width, .. } => 0.5 * width,
+            FeatureShape::Pit { width, length, .. } | FeatureShape::Dent { width, length, .. } => {
+                let size = if axis == 0 { *width } else { *length };
+                size.is_finite().then_some(0.5 * size)?
+            }
             FeatureShape::Waviness { .. } => return None,
-            FeatureShape::HeightMap(map) => map.half_extent().0,
+            FeatureShape::HeightMap(map) => {
+                let h = map.half_extent();
+                if axis == 0 {
+                    h.0
+                } else {
+                    h.1
+                }
+            }
         };
         let (lo, hi) = self
             .copies()
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(ox, _)| {
-                (a.min(ox), b.max(ox))
-            });
-        let xc = self.centre.0;
-        Some((xc + lo - half, xc + hi + half))
+            .map(|&(ox, oy)| if axis == 0 { ox } else { oy })
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), o| (a.min(o), b.max(o)));
+        let c = if axis == 0 { self.centre.0 } else { self.centre.1 };
+        Some((c + lo - half, c + hi + half))
     }
 
     /// Offsets of the copies from `centre` (one `(0, 0)` without a pattern).
