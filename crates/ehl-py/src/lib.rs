@@ -92,8 +92,23 @@ fn busy<T>(r: Result<T, impl std::fmt::Display>) -> PyResult<T> {
 /// dict, list, tuple, numpy arrays. `key` names the place in messages; an error carries the
 /// dotted path of the value that has no case-file form (`features[1].depth`) and the reason.
 fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, String)> {
+    to_toml_at(v, key, 0)
+}
+
+/// Most levels of dicts and lists a value may nest: a case file nests three or four; a dict
+/// that contains itself, or a list nested 20000 deep, recursed without end and crashed the
+/// interpreter (a scan).
+const MAX_NESTING: usize = 64;
+
+/// [`to_toml`] at nesting level `depth`.
+fn to_toml_at(v: &Bound<'_, PyAny>, key: &str, depth: usize) -> Result<toml::Value, (String, String)> {
     use toml::Value;
     let fail = |m: String| (key.to_string(), m);
+    if depth > MAX_NESTING {
+        return Err(fail(format!(
+            "`{key}` nests more than {MAX_NESTING} levels of dicts and lists (a value that contains itself?); a case nests a few"
+        )));
+    }
     if v.is_instance_of::<PyBool>() {
         return Ok(Value::Boolean(
             v.extract::<bool>().map_err(|e| fail(e.to_string()))?,
@@ -134,7 +149,7 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, Stri
             if item.is_none() {
                 continue; // None: the key is left out (its default applies)
             }
-            t.insert(name, to_toml(&item, &sub)?);
+            t.insert(name, to_toml_at(&item, &sub, depth + 1)?);
         }
         return Ok(Value::Table(t));
     }
@@ -142,7 +157,7 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, Stri
         let mut items = Vec::new();
         for (i, item) in v.try_iter().map_err(|e| fail(e.to_string()))?.enumerate() {
             let item = item.map_err(|e| fail(e.to_string()))?;
-            items.push(to_toml(&item, &format!("{key}[{i}]"))?);
+            items.push(to_toml_at(&item, &format!("{key}[{i}]"), depth + 1)?);
         }
         return Ok(Value::Array(items));
     }
@@ -165,13 +180,13 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, Stri
     if v.hasattr("tolist").unwrap_or(false) {
         if let Ok(l) = v.call_method0("tolist") {
             if !l.is(v) {
-                return to_toml(&l, key);
+                return to_toml_at(&l, key, depth + 1);
             }
         }
     }
     if v.hasattr("__fspath__").unwrap_or(false) {
         if let Ok(p) = v.call_method0("__fspath__") {
-            return to_toml(&p, key);
+            return to_toml_at(&p, key, depth + 1);
         }
     }
     if v.hasattr("__index__").unwrap_or(false) {
@@ -311,6 +326,10 @@ impl PyCase {
     #[staticmethod]
     fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let text = ehl::case::read_case_text(&path).map_err(|e| py_err(py, e))?;
+        // kept absolute: a height map's relative path is read from the case file's folder at
+        // every validation (set, copy, unpickling), and after an os.chdir a relative name
+        // pointed elsewhere (a scan)
+        let path = std::path::absolute(&path).unwrap_or(path);
         Self::parse(py, text, path.display().to_string(), Vec::new())
     }
 

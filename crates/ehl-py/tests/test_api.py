@@ -343,6 +343,51 @@ def test_progress_callback_sees_the_end():
     ehl.solve(small_ehl(), progress=True)
 
 
+def test_a_thermal_solve_reports_progress_that_never_goes_back():
+    # the isothermal start filled the bar to 0.95 and the thermal iterations then reported 0.9
+    # (a scan); now the fractions only grow, and the thermal ones come after the start's
+    c = ehl.Case.from_file(example("ehl_thermal_line.toml"))
+    c.set("grid.nx", 128)
+    seen = []
+    ehl.solve(c, progress=lambda f, m: seen.append((f, m)))
+    known = [f for f, _ in seen if f == f]
+    assert known == sorted(known), known
+    assert any(m.startswith("thermal") for _, m in seen) and seen[-1][0] == 1.0
+
+
+def test_a_value_that_contains_itself_is_a_case_error():
+    # to_toml recursed without end and crashed the interpreter (a scan)
+    d = {"kind": "ehl"}
+    d["me"] = d
+    with pytest.raises(ehl.CaseError, match="nests more than"):
+        ehl.Case.from_dict(d)
+    deep = 1.0
+    for _ in range(20000):
+        deep = [deep]
+    c = small_ehl()
+    with pytest.raises(ehl.CaseError, match="nests more than"):
+        c.set("body1.profile", deep)
+    assert c.get("grid.nx") == 128
+
+
+def test_a_relative_height_map_is_found_after_a_change_of_folder(tmp_path, monkeypatch):
+    # the case file's folder was kept relative, so after os.chdir a set or an unpickling read
+    # the height map from the wrong place (a scan)
+    import pickle
+
+    (tmp_path / "case").mkdir()
+    np.save(tmp_path / "case" / "surf.npy", np.full((2, 2), 1e-6))
+    text = pathlib.Path(example("dry_ball_on_flat.toml")).read_text()
+    text += '\n[[features]]\nkind = "height-map"\nfile = "surf.npy"\ndx = 1e-5\ndy = 1e-5\n'
+    (tmp_path / "case" / "case.toml").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    c = ehl.Case.from_file("case/case.toml")
+    monkeypatch.chdir(tmp_path / "case")
+    c.set("load.force", 10.0)
+    d = pickle.loads(pickle.dumps(c))
+    assert d.get("load.force") == 10.0 and d.check() == c.check()
+
+
 def test_an_exception_in_the_callback_stops_the_solve():
     def boom(f, m):
         raise RuntimeError("stop here")

@@ -80,7 +80,7 @@ class _Bar:
             total=1000,
             desc=(title[:30] + "...") if len(title) > 33 else title,
             leave=False,
-            bar_format="{desc}: {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}] {postfix}",
+            bar_format="{desc}: {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}]{postfix}",
         )
         self.at = 0
 

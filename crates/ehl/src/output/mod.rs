@@ -306,7 +306,7 @@ pub fn check_replaceable(dir: &Path) -> Result<()> {
     if !meta.is_dir() {
         return Err(io_err(
             dir,
-            "exists and is not a folder; not replacing it (choose another --out)",
+            "exists and is not a folder; not replacing it (choose another output folder)",
         ));
     }
     let mut entries = std::fs::read_dir(dir).map_err(|e| io_err_at(dir, dir, "cannot read", &e))?;
@@ -499,7 +499,7 @@ pub fn create_folder(dir: &Path) -> Result<()> {
         Ok(_) => {
             return Err(io_err(
                 dir,
-                "exists and is not a folder (choose another --out)",
+                "exists and is not a folder (choose another output folder)",
             ))
         }
         Err(_) => {}
@@ -542,7 +542,7 @@ impl OutputLock {
         if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
             return Err(io_err(
                 dir,
-                "exists and is not a folder; not replacing it (choose another --out)",
+                "exists and is not a folder; not replacing it (choose another output folder)",
             ));
         }
         let created = create_parent(dir, &parent)?;
@@ -569,7 +569,7 @@ impl OutputLock {
                         dir,
                         format!(
                             "another ehl process is writing `{}` (lock file `{}`); wait for it \
-                             to finish or choose another --out",
+                             to finish or choose another output folder",
                             dir.display(),
                             path.display()
                         ),
@@ -678,7 +678,7 @@ impl Staging {
         if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
             return Err(io_err(
                 dir,
-                "exists and is not a folder; not replacing it (choose another --out)",
+                "exists and is not a folder; not replacing it (choose another output folder)",
             ));
         }
         check_replaceable(dir)?;

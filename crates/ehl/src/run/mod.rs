@@ -924,6 +924,9 @@ fn solve_ehl(
     // (never backwards: a finer grid of the sequence starts at a higher residual)
     let mut first: Option<f64> = None;
     let mut shown = 0.0f64;
+    // the share of the bar the isothermal solve fills: with [thermal] the outer iterations
+    // come after it (reported at a fixed 0.9 after up to 0.95, the bar went backwards; a scan)
+    let span = if case.thermal.is_some() { 0.3 } else { 0.85 };
     let mut observer = |it: &crate::ehl::NewtonIterate| {
         let r0 = *first.get_or_insert(it.residual.max(it.tolerance * 10.0));
         let done = if it.residual > 0.0 && r0 > it.tolerance {
@@ -933,7 +936,7 @@ fn solve_ehl(
         };
         shown = shown.max(done);
         progress.report(
-            0.1 + 0.85 * shown,
+            0.1 + span * shown,
             &format!(
                 "EHL: Newton step {}, residual {:.1e} (tolerance {:.0e}), {} cells",
                 it.newton_steps, it.residual, it.tolerance, it.cells
@@ -956,15 +959,19 @@ fn solve_ehl(
     let mut r = crate::ehl::solve_steady_with_fallback_observed(
         &problem,
         &params,
-        &|| progress.report(0.5, "EHL, second start"),
+        // (the fraction unknown: the first start may have shown more than any fixed figure)
+        &|| progress.report(f64::NAN, "EHL, second start"),
         &mut observer,
     );
     // [thermal]: the temperature fixed point from the isothermal solution
     let mut thermal_run = None;
     if case.thermal.is_some() && r.converged {
         let mut told = |outer: usize, change: f64| {
+            // the outer iterations' count is not known ahead: a fraction that grows with them
+            // towards 0.95, never back
+            let k = outer as f64;
             progress.report(
-                0.9,
+                0.1 + span + (0.85 - span) * k / (k + 5.0),
                 &format!(
                     "thermal: outer iteration {outer}{}",
                     thermal::change_text(change)
