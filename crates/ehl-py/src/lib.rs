@@ -450,7 +450,19 @@ impl PyCase {
                     )
                 })?;
                 here = match &here {
-                    toml::Value::Array(a) => a.get(i).cloned().ok_or_else(not_set)?,
+                    toml::Value::Array(a) => a.get(i).cloned().ok_or_else(|| {
+                        // an index past the end is no key with a default: the entry is missing
+                        case_err(
+                            py,
+                            &self.file,
+                            &display,
+                            format!(
+                                "index {i} does not exist: `{name}` has {} entr{}",
+                                a.len(),
+                                if a.len() == 1 { "y" } else { "ies" }
+                            ),
+                        )
+                    })?,
                     _ => return Err(not_set()),
                 };
                 rest = &rest[close + 1..];

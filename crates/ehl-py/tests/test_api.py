@@ -108,6 +108,9 @@ def test_get_follows_every_index_or_says_why_not():
         with pytest.raises(ehl.CaseError) as e:
             t.get(key)
         assert e.value.key is not None, key
+    # an entry past the end is said to be missing, not to have a default (a scan)
+    with pytest.raises(ehl.CaseError, match="index 5 does not exist: `features` has 1 entry"):
+        t.get("features[5].depth")
 
 
 def test_a_bad_key_raises_case_error_naming_the_key():
