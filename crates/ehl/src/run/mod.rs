@@ -725,7 +725,13 @@ fn inlet_warning(case: &Case, solution: &mut Solution) {
             "the central film is {ratio:.2} of the full-regime fit's {:.3e} m (Barus, incompressible) at Moes M = {m:.3}: at so light a load the film is built in a long inlet, and grid.x_min = {} b likely starves it; widen the inlet (grid.x_min = -16 or less) and compare",
             estimate, case.grid.x_min
         ));
-    } else if ratio < 0.65 {
+    } else if ratio < 0.65
+        && matches!(
+            case.lubricant.as_ref().map(|l| &l.rheology),
+            Some(crate::lubricant::Rheology::Newtonian)
+        )
+    {
+        // (a Newtonian film only: shear thinning in the inlet thins a film by itself)
         // a heavier load builds the film in a short inlet: an inlet cut to ~1 b, or a grid too
         // coarse for the thin film's steep Hertz-zone gradients (a scan: the EHL-FBNS ball with
         // x_min = -1 b on 32^2 cells gave 53 nm against 207 nm; a line at M = 100 on 256 cells
