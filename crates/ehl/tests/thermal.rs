@@ -1167,3 +1167,17 @@ fn a_groove_passes_through_the_thermal_line() {
     );
     assert!(m.max_energy_balance_error.unwrap() < 1e-2);
 }
+
+/// A thermal solve that did not settle says in a warning that its temperatures are no solution
+/// (a scan found an unsettled thermal roller reporting absurd temperatures with only
+/// `converged = false` to flag them); a settled one does not.
+#[test]
+fn an_unsettled_thermal_solve_warns_of_its_temperatures() {
+    let text = THERMAL.to_string();
+    let said = |s: &Solution| s.summary.warnings.iter().any(|w| w.contains("did not settle: not a solution"));
+    let short = solve(&parse_str(&text, "thermal.toml", &["grid.nx=128".into(), "thermal.max_iterations=2".into()]).unwrap());
+    assert!(!short.summary.converged);
+    assert!(short.summary.max_film_temperature_k.is_some() && said(&short), "{:?}", short.summary.warnings);
+    let settled = solve(&parse_str(&text, "thermal.toml", &["grid.nx=128".into()]).unwrap());
+    assert!(settled.summary.converged && !said(&settled), "{:?}", settled.summary.warnings);
+}

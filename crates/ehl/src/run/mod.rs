@@ -1010,6 +1010,13 @@ fn solve_ehl(
         }
         if run.contact.solved() {
             thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
+            if !r.converged {
+                // a scan found an unsettled thermal roller reporting absurd temperatures with
+                // only `converged = false` to flag them
+                summary.warnings.push(
+                    "the temperatures and heat flows are those of the last outer iteration of a thermal solve that did not settle: not a solution; see termination".into(),
+                );
+            }
         }
     } else if r.converged {
         add_friction(
