@@ -542,10 +542,34 @@ impl PyCase {
         d.set_item("dy_m", r.dy)?;
         d.set_item("cells_across_2b", r.cells_across_2b)?;
         d.set_item("cells_across_y", r.cells_across_y)?;
-        d.set_item(
-            "memory_estimate_bytes",
-            ehl::run::memory_estimate(&self.case).bytes,
-        )?;
+        d.set_item("memory_estimate_bytes", r.memory.0)?;
+        d.set_item("memory_limit_bytes", r.memory.1)?;
+        if let Some(st) = &r.stress {
+            let e = PyDict::new(py);
+            e.set_item("bodies", st.bodies.clone())?;
+            e.set_item("layers", st.layers)?;
+            e.set_item("first_depth_m", st.first_m)?;
+            e.set_item("depth_m", st.depth_m)?;
+            e.set_item("depth_over_b", st.depth_b)?;
+            e.set_item("window_m", st.window.map(|w| w.0))?;
+            e.set_item("window_layers", st.window.map(|w| w.1))?;
+            e.set_item("passage_bytes", st.window.map(|w| w.2))?;
+            if let Some((name, c, h, slope)) = &st.fatigue {
+                let f = PyDict::new(py);
+                f.set_item("criterion", name)?;
+                f.set_item("stress_exponent", c)?;
+                f.set_item("depth_exponent", h)?;
+                f.set_item("weibull_slope", slope)?;
+                f.set_item("dang_van_alpha", st.dang_van.map(|d| d.0))?;
+                f.set_item("dang_van_beta_pa", st.dang_van.map(|d| d.1))?;
+                e.set_item("fatigue", f)?;
+            } else {
+                e.set_item("fatigue", py.None())?;
+            }
+            d.set_item("stress", e)?;
+        } else {
+            d.set_item("stress", py.None())?;
+        }
         if let Some(t) = &r.transient {
             let e = PyDict::new(py);
             e.set_item("steps", t.steps)?;

@@ -46,7 +46,11 @@ class Case:
         ``moes_L``, ``spike_pressure_pa``, ``spike_position_m``, ``film_estimates`` (list of
         dicts: ``formula``, ``central_film_m``, ``min_film_m``, ``fitted_with``,
         ``case_uses_same_laws``), the grid (``nx``, ``ny``, ``dx_m``, ``dy_m``,
-        ``cells_across_2b``, ``cells_across_y``), ``memory_estimate_bytes`` and, for a
+        ``cells_across_2b``, ``cells_across_y``), ``memory_estimate_bytes`` and
+        ``memory_limit_bytes``, for a ``[stress]`` case ``stress`` (``bodies``, ``layers``,
+        ``first_depth_m``, ``depth_m``, ``depth_over_b``, ``window_m``, ``window_layers``,
+        ``passage_bytes``, ``fatigue``: ``criterion``, ``stress_exponent``,
+        ``depth_exponent``, ``weibull_slope``, ``dang_van_alpha``, ``dang_van_beta_pa``) and, for a
         transient case, ``transient`` (``steps``, ``dt_s``, ``x_p_from_m``, ``x_p_to_m``,
         ``u1_m_s``, ``u2_m_s``, ``feature_cells_per_step``, ``steps_for_one_cell``: the
         ``motion.travel.steps`` for one cell a step where the case's move features[0] by more
