@@ -313,7 +313,8 @@ fn main() -> ExitCode {
     on_signal();
     // a memory limit that cannot be read was ignored without a word (a scan: "abc", "-5")
     if let Ok(v) = std::env::var(ehl::run::MEMORY_LIMIT_ENV) {
-        if !v.trim().parse::<f64>().is_ok_and(|b| b > 0.0 && b.is_finite()) {
+        // (set but empty counts as unset, as in the library)
+        if !v.trim().is_empty() && !v.trim().parse::<f64>().is_ok_and(|b| b > 0.0 && b.is_finite()) {
             io::err(&format!(
                 "error: {} = {v:?}: must be a positive number of bytes, e.g. 8e9",
                 ehl::run::MEMORY_LIMIT_ENV

@@ -388,16 +388,24 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         return Ok(());
     }
     let out = dir.join("sweep.png");
-    // the SI unit of the varied key, from its last segment (the case file is all SI)
+    // the unit of the varied key: the [stress] depths are in b, the features' sizes in m,
+    // the rest from the key's last segment (the case file is otherwise all SI)
     let last = first.key.rsplit('.').next().unwrap_or("");
+    let feature = first.key.starts_with("features[");
     let unit = match last {
+        "depth" | "window" if first.key.starts_with("stress.") => " (b)",
+        "width" | "depth" | "amplitude" | "wavelength" | "x" | "y" | "dx" | "dy" | "row_pitch"
+        | "column_pitch"
+            if feature =>
+        {
+            " (m)"
+        }
         "force" | "load" => " (N)",
         "force_per_length" => " (N/m)",
         "max_hertz_pressure" | "youngs_modulus" | "shear_modulus" | "eyring_stress" => " (Pa)",
         "entrainment_speed" => " (m/s)",
         "radius" | "radius_y" | "length" | "crown_radius" | "edge_length" | "edge_radius"
-        | "axial_offset" | "width" | "depth" | "amplitude" | "wavelength" | "x" | "y" | "dx"
-        | "dy" | "row_pitch" | "column_pitch" => " (m)",
+        | "axial_offset" | "depth_m" => " (m)",
         "tilt" | "skew" | "angle" => " (rad)",
         "viscosity" => " (Pa s)",
         "pressure_viscosity_coefficient" => " (1/Pa)",

@@ -633,7 +633,8 @@ impl PyCase {
         Ok((f, (c.text.clone(), c.file.clone(), c.overrides.clone())))
     }
 
-    /// The case file as given (or `<string>`, `<dict>`).
+    /// The case file (made absolute by `from_file`), or the name given to `from_toml` /
+    /// `from_dict` (`<string>`, `<dict>` by default).
     #[getter]
     fn file(&self) -> &str {
         &self.file

@@ -303,4 +303,11 @@ fn a_feature_that_never_reaches_the_grid_is_warned() {
     assert!(never(&away), "{:?}", away.warnings);
     let through = solve(&["motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}"]);
     assert!(!never(&through), "{:?}", through.warnings);
+    // the path form starts features[0] at `from`, wherever the case put it (a review: the
+    // check used the case's position): the example's dent (x = -0.4 mm) sent from -5 mm never
+    // arrives, and a dent put at -5 mm but sent from -0.4 mm does
+    let sent_away = solve(&["motion.travel={from=-5e-3,to=-4e-3,steps=10}"]);
+    assert!(never(&sent_away), "{:?}", sent_away.warnings);
+    let brought = solve(&["features[0].x=-5e-3", "motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}"]);
+    assert!(!never(&brought), "{:?}", brought.warnings);
 }

@@ -67,7 +67,9 @@ class Case:
         """Pickling (process pools): the file's text, its name and the overrides; unpickling
         validates them again."""
     @property
-    def file(self) -> str: ...
+    def file(self) -> str:
+        """The case file (made absolute by ``from_file``), or the name given to ``from_toml`` /
+        ``from_dict``."""
     @property
     def title(self) -> str: ...
     @property

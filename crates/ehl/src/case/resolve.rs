@@ -1346,9 +1346,15 @@ fn skew_keeps_a_line(
         return Ok(());
     }
     let half = |body: &Body, proj: f64| 0.5 * body.length * proj;
-    let (h1, h2) = (half(body1, 1.0), half(body2, a.skew.cos().abs()));
+    let cos = a.skew.cos().abs();
+    let (h1, h2) = (half(body1, 1.0), half(body2, cos));
     let off = body2.axial_offset;
-    let lc = ((h1).min(off + h2) - (-h1).max(off - h2)).max(0.0);
+    let mut lc = ((h1).min(off + h2) - (-h1).max(off - h2)).max(0.0);
+    if !body2.length.is_finite() {
+        // an endless body 2 overlaps body 1 whole at any skew: the crossing shows in body 1's
+        // length projected on body 2's axis instead (a review)
+        lc = lc.min(2.0 * h1 * cos);
+    }
     let bc = if lc > 0.0 { b * (len / lc).sqrt() } else { f64::INFINITY };
     if lc >= 2.0 * bc {
         return Ok(());
@@ -2416,6 +2422,6 @@ pub(crate) fn resolve(root: &Table, file: &str) -> R<Case> {
         thermal,
     };
     let (limit, source) = crate::run::memory_limit();
-    crate::run::check_memory(&case, limit, source).map_err(|(k, m)| case_err(file, &k, m))?;
+    crate::run::check_memory(&case, limit, &source).map_err(|(k, m)| case_err(file, &k, m))?;
     Ok(case)
 }

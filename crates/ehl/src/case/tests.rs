@@ -915,6 +915,12 @@ fn a_skew_that_crosses_the_rollers_is_refused() {
         assert_eq!(k, "alignment.skew", "{s}");
         assert!(m.contains("crossed cylinders"), "{m}");
     }
+    // an endless body 2 overlaps body 1 whole at any skew: body 1's length projected on body
+    // 2's axis shows the crossing (a review found pi/2 - 3e-8 still accepted there)
+    let endless = ["body2.length=inf"];
+    assert!(parse(ROLLERS, &[endless[0], "alignment.skew=0.5"]).is_ok());
+    let (k, _) = err(ROLLERS, &[endless[0], "alignment.skew=1.5707963"]);
+    assert_eq!(k, "alignment.skew");
 }
 
 /// Found by the fuzzer: a radius of f64::MIN_POSITIVE was accepted and gave a NaN resolution in

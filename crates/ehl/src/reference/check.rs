@@ -533,7 +533,7 @@ impl fmt::Display for CheckReport {
                     format!("{} ({layers})", fixed(w * 1e6, 2)),
                     "um",
                 )?;
-                row(f, "passage accumulators", fixed(bytes / 1e6, 1), "MB")?;
+                row(f, "passage maps (accumulators, fields, spectra)", fixed(bytes / 1e6, 1), "MB")?;
             }
             if let Some((name, c, h, e)) = &st.fatigue {
                 row(f, "fatigue criterion", name.clone(), "")?;

@@ -257,11 +257,18 @@ pub fn memory_estimate(case: &Case) -> MemoryEstimate {
 /// The memory a solve may use (bytes): `EHL_MEMORY_LIMIT` when set to a positive number, else
 /// MemAvailable of /proc/meminfo, else [`DEFAULT_MEMORY_LIMIT`]. The second value says where the
 /// figure comes from, for messages.
-pub fn memory_limit() -> (f64, &'static str) {
+pub fn memory_limit() -> (f64, String) {
+    // a value that is no positive number is ignored, and the source says so (the CLI refuses
+    // it outright; a library or Python caller learns it from the refusal's text)
+    let mut ignored = String::new();
     if let Ok(v) = std::env::var(MEMORY_LIMIT_ENV) {
-        if let Ok(b) = v.trim().parse::<f64>() {
-            if b > 0.0 && b.is_finite() {
-                return (b, "EHL_MEMORY_LIMIT");
+        match v.trim().parse::<f64>() {
+            Ok(b) if b > 0.0 && b.is_finite() => return (b, MEMORY_LIMIT_ENV.to_string()),
+            _ if v.trim().is_empty() => {}
+            _ => {
+                ignored = format!(
+                    "; {MEMORY_LIMIT_ENV} = {v:?} is not a positive number of bytes and was ignored"
+                )
             }
         }
     }
@@ -270,12 +277,18 @@ pub fn memory_limit() -> (f64, &'static str) {
             if let Some(rest) = line.strip_prefix("MemAvailable:") {
                 let mut it = rest.split_whitespace();
                 if let Some(Ok(kb)) = it.next().map(|t| t.parse::<f64>()) {
-                    return (kb * 1024.0, "the available memory (MemAvailable)");
+                    return (
+                        kb * 1024.0,
+                        format!("the available memory (MemAvailable{ignored})"),
+                    );
                 }
             }
         }
     }
-    (DEFAULT_MEMORY_LIMIT, "the default limit (no /proc/meminfo)")
+    (
+        DEFAULT_MEMORY_LIMIT,
+        format!("the default limit (no /proc/meminfo{ignored})"),
+    )
 }
 
 /// `Err((key, message))` when the estimated memory of `case` exceeds `limit` bytes
@@ -304,7 +317,7 @@ pub fn check_memory(
         ),
         "stress.window" => (
             format!("the passage maps of a transient run with [stress] (accumulators on the body-frame grid, the contact grid of {nx} x {ny} cells extended by the travel, times the window's layers) need about {} in all (estimate)", bytes_text(est.bytes)),
-            "take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (13 of the 16 f32 per point), shorten motion.travel",
+            "take a shallower stress.window (fewer layers), one body (stress.body = 1 or 2), leave out fatigue.dang_van (13 of the 19 f32 per point, and the kept surface loads), shorten motion.travel",
         ),
         "stress.layers" => (
             format!("the stress field of {layers} layers below {nx} x {ny} cells needs about {} (estimate)", bytes_text(est.bytes)),
@@ -696,10 +709,12 @@ pub const LONG_INLET_M: f64 = 20.0;
 /// M = 10.8) while its inlet starts within 10 b: the short inlet, not the physics, is then the
 /// likely cause (a line at M = 0.96 gave 0.58 with x_min = -4 b, 0.75 with -20 b).
 fn inlet_warning(case: &Case, solution: &mut Solution) {
+    // (features: the film at the centre is the feature's, not the smooth contact's the fits give)
     if case.kind != Kind::Ehl
         || solution.transient.is_some()
         || case.thermal.is_some()
         || !solution.summary.converged
+        || !case.features.is_empty()
     {
         return;
     }

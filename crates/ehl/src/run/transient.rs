@@ -478,8 +478,9 @@ pub(super) fn solve(
             continue;
         };
         let u = case.motion.as_ref().map_or(0.0, |m| if f.body == 1 { m.u1() } else { m.u2() });
+        // every surface starts shifted by shift0 (the path form puts features[0] at `from`)
         let s = u * duration;
-        let (lo, hi) = (a + s.min(0.0), b + s.max(0.0));
+        let (lo, hi) = (a + kin.shift0 + s.min(0.0), b + kin.shift0 + s.max(0.0));
         if hi <= xlo || lo >= xhi {
             summary.warnings.push(format!(
                 "features[{i}] never comes onto the grid: over the travel it covers x = {lo:.4e} .. {hi:.4e} m, the grid x = {xlo:.4e} .. {xhi:.4e} m, so the run is that of smooth surfaces; move features[{i}].x or lengthen motion.travel"

@@ -11,8 +11,8 @@
 //! so that at t = 0 the two frames coincide; `features[0]`'s centre, if on this body, sits at
 //! xi = x_p(0). The body-frame grid has the contact grid's spacing dx and is the contact grid
 //! extended against the motion by the travel |u_k| T (T the run's duration):
-//! `nx_body = nx + ceil(|u_k| T / dx)` columns, each material column inside the contact grid
-//! at some time of the run. y and z are the contact grid's rows and the window's layers.
+//! `nx_body = nx + ceil(|u_k| T / dx - 1/2)` columns, each material column within half a cell
+//! of the contact grid at some evaluated time of the run (the last, t = T, at the latest). y and z are the contact grid's rows and the window's layers.
 //!
 //! At an evaluation time t the stress of material point m sits at contact-frame position
 //! x = xi_m + u_k t, between contact cells: its tensor is interpolated linearly between the two
