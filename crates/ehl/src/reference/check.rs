@@ -68,7 +68,8 @@ pub struct StressCheck {
     pub depth_b: f64,
     /// shallowest layer (m)
     pub first_m: f64,
-    /// transient runs: the passage window's depth (m) and layers, and its accumulators (bytes)
+    /// transient runs: the passage window's depth (m) and layers, and the memory of its maps
+    /// (bytes: accumulators, window fields, kept spectra, `run::stress::passage_memory`)
     pub window: Option<(f64, usize, f64)>,
     /// `[fatigue]`: the criterion and the exponents (c, h, e)
     pub fatigue: Option<(String, f64, f64, f64)>,

@@ -770,7 +770,7 @@ fn elastic_range_warning(case: &Case, s: &mut Summary) {
     let ratio = peak / e_red;
     if ratio > crate::case::MAX_PRESSURE_OVER_MODULUS {
         s.warnings.push(format!(
-            "the pressure peaks at {:.3e} Pa, {ratio:.2} times the reduced modulus E' = {e_red:.3e} Pa: beyond p / E' = {} the half-space and linear elasticity no longer hold (steel yields near 0.02); a feature sharper than the grid or steeper than the small-slope gap assumes is the likely cause",
+            "the pressure peaks at {:.3e} Pa, {ratio:.2} times the reduced modulus E' = {e_red:.3e} Pa: beyond p / E' = {} the half-space and linear elasticity no longer hold (steel yields near 0.02); a feature sharper than the grid or steeper than the small-slope gap assumes, or the sharp end of a straight roller (edge loading: profile the roller, docs/ehl.md section 6), is the likely cause",
             peak,
             crate::case::MAX_PRESSURE_OVER_MODULUS
         ));
