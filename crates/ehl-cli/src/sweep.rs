@@ -412,6 +412,19 @@ fn write_plot(dir: &Path, title: &str, varies: &[Vary], pts: &[Point]) -> Result
         "density" => " (kg/m³)",
         _ => " (-)",
     };
+    // lengths drawn in um or mm where metres would print as 0.0000002
+    let largest = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.0.abs()))
+        .fold(0.0f64, f64::max);
+    let (unit, scale) = match unit {
+        " (m)" if largest < 1e-3 => (" (µm)", 1e6),
+        " (m)" if largest < 1.0 => (" (mm)", 1e3),
+        u => (u, 1.0),
+    };
+    for s in series.iter_mut() {
+        s.points.iter_mut().for_each(|p| p.0 *= scale);
+    }
     write_atomic(&out, |path| {
         Ok(ehl::output::plot::write_xy(
             path,
