@@ -138,39 +138,72 @@ pub fn effective_viscosity(model: &Rheology, eta: f64, shear_rate: f64, p: f64) 
 /// [`effective_viscosity`] (to round-off, tested) at one `exp`, one `ln_1p` and one `ln` per
 /// call instead of `powf` and `ln`, and with the slope analytic.
 pub fn ln_effective_viscosity(model: &Rheology, ln_eta: f64, ln_shear_rate: f64) -> (f64, f64) {
-    match *model {
-        Rheology::Newtonian => (ln_eta, 0.0),
-        Rheology::Carreau {
-            shear_modulus,
-            power_law_index,
-            ..
-        } => {
-            let e = 0.5 * (power_law_index - 1.0);
-            let lx = ln_eta + ln_shear_rate - shear_modulus.ln();
-            // l = ln(1 + x^2), r = x^2 / (1 + x^2), each without forming x^2
-            let (l, r) = if lx <= 0.0 {
-                let q = (2.0 * lx).exp();
-                (q.ln_1p(), q / (1.0 + q))
-            } else {
-                let q = (-2.0 * lx).exp();
-                (2.0 * lx + q.ln_1p(), 1.0 / (1.0 + q))
-            };
-            (ln_eta + e * l, 2.0 * e * r)
+    LnShearLaw::of(model).eval(ln_eta, ln_shear_rate)
+}
+
+/// The unlimited shear law of [`ln_effective_viscosity`] with its constants formed once (the
+/// logarithms of G_f and tau_0): the film's Newton iteration evaluates it several times per
+/// point with the law fixed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LnShearLaw {
+    Newtonian,
+    /// e = (n - 1) / 2, ln G_f (G_f in Pa)
+    Carreau { e: f64, ln_g: f64 },
+    /// ln tau_0 (tau_0 in Pa)
+    Eyring { ln_tau0: f64 },
+}
+
+impl LnShearLaw {
+    pub fn of(model: &Rheology) -> Self {
+        match *model {
+            Rheology::Newtonian => LnShearLaw::Newtonian,
+            Rheology::Carreau {
+                shear_modulus,
+                power_law_index,
+                ..
+            } => LnShearLaw::Carreau {
+                e: 0.5 * (power_law_index - 1.0),
+                ln_g: shear_modulus.ln(),
+            },
+            Rheology::Eyring { eyring_stress, .. } => LnShearLaw::Eyring {
+                ln_tau0: eyring_stress.ln(),
+            },
         }
-        Rheology::Eyring { eyring_stress, .. } => {
-            let lx = ln_eta + ln_shear_rate - eyring_stress.ln();
-            if lx < -9.0 {
-                // asinh(x)/x = 1 - x^2/6 + 3 x^4/40: the x^4 term is below 1e-17 here
-                let x2 = (2.0 * lx).exp();
-                (ln_eta + (-x2 / 6.0).ln_1p(), -x2 / 3.0)
-            } else if lx > 300.0 {
-                // asinh(x) = ln 2 + ln x + O(1/x^2), sqrt(1 + x^2) = x (1 + O(1/x^2))
-                let a = std::f64::consts::LN_2 + lx;
-                (ln_eta + a.ln() - lx, 1.0 / a - 1.0)
-            } else {
-                let x = lx.exp();
-                let a = x.asinh();
-                (ln_eta + (a / x).ln(), x / (1.0f64.hypot(x) * a) - 1.0)
+    }
+
+    /// (ln eta_eff, d ln eta_eff / d ln gamma_dot) at `ln_eta`, `ln_shear_rate`: see
+    /// [`ln_effective_viscosity`].
+    #[inline]
+    pub fn eval(&self, ln_eta: f64, ln_shear_rate: f64) -> (f64, f64) {
+        match *self {
+            LnShearLaw::Newtonian => (ln_eta, 0.0),
+            LnShearLaw::Carreau { e, ln_g } => {
+                let lx = ln_eta + ln_shear_rate - ln_g;
+                // l = ln(1 + x^2), r = x^2 / (1 + x^2), each without forming x^2
+                let (l, r) = if lx <= 0.0 {
+                    let q = (2.0 * lx).exp();
+                    (q.ln_1p(), q / (1.0 + q))
+                } else {
+                    let q = (-2.0 * lx).exp();
+                    (2.0 * lx + q.ln_1p(), 1.0 / (1.0 + q))
+                };
+                (ln_eta + e * l, 2.0 * e * r)
+            }
+            LnShearLaw::Eyring { ln_tau0 } => {
+                let lx = ln_eta + ln_shear_rate - ln_tau0;
+                if lx < -9.0 {
+                    // asinh(x)/x = 1 - x^2/6 + 3 x^4/40: the x^4 term is below 1e-17 here
+                    let x2 = (2.0 * lx).exp();
+                    (ln_eta + (-x2 / 6.0).ln_1p(), -x2 / 3.0)
+                } else if lx > 300.0 {
+                    // asinh(x) = ln 2 + ln x + O(1/x^2), sqrt(1 + x^2) = x (1 + O(1/x^2))
+                    let a = std::f64::consts::LN_2 + lx;
+                    (ln_eta + a.ln() - lx, 1.0 / a - 1.0)
+                } else {
+                    let x = lx.exp();
+                    let a = x.asinh();
+                    (ln_eta + (a / x).ln(), x / (1.0f64.hypot(x) * a) - 1.0)
+                }
             }
         }
     }

@@ -35,7 +35,7 @@ use super::film_energy::{solve_lines, Line, LineOptions, LineSolution, LineTrans
 use super::solid::{MovingHalfSpace, SolidThermal};
 use crate::grid::Grid;
 use crate::lubricant::rheology::{
-    effective_viscosity, limiting_shear_stress, ln_effective_viscosity,
+    effective_viscosity, limiting_shear_stress, ln_effective_viscosity, LnShearLaw,
 };
 use crate::lubricant::temperature::ThermalLaws;
 use crate::lubricant::Rheology;
@@ -68,6 +68,9 @@ impl FilmLaws for ThermalLaws {
         t: f64,
     ) -> (f64, f64) {
         ln_effective_viscosity(&self.rheology(t), ln_eta, ln_shear_rate)
+    }
+    fn ln_shear_law(&self, _p: f64, t: f64) -> Option<LnShearLaw> {
+        Some(LnShearLaw::of(&self.rheology(t)))
     }
     fn limiting_shear_stress(&self, p: f64, t: f64) -> Option<f64> {
         limiting_shear_stress(&self.rheology(t), p)

@@ -47,6 +47,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::collocation::Lobatto;
+use crate::lubricant::rheology::LnShearLaw;
 
 /// Errors of the film computations (no result exists).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -124,6 +125,13 @@ pub trait FilmLaws: Sync {
         let b = self.effective_viscosity(eta, g * (1.0 + STEP), p, t);
         let s = (b.ln() - a.ln()) / STEP.ln_1p();
         (a.ln(), if s.is_finite() { s } else { 0.0 })
+    }
+    /// The law of [`FilmLaws::ln_effective_viscosity`] at (p, T) with its constants formed
+    /// once, where it has the closed form of [`LnShearLaw`] (None, the default: the column
+    /// iteration calls `ln_effective_viscosity`). Must agree with it.
+    fn ln_shear_law(&self, p: f64, t: f64) -> Option<LnShearLaw> {
+        let _ = (p, t);
+        None
     }
     /// The limiting shear stress tau_L (Pa) at (p, T), if the law has one (None: no limit).
     /// [`super::film_energy::line_coefficients`] caps each column's stress with it.
@@ -465,7 +473,15 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     // every per-point vector in one buffer, on the stack up to 16 points: this runs once per
     // film column per film iteration, and its ~15 small vectors were 11 % of a thermal
     // transient run (perf, the thesis pit at 128 x 128)
-    let mut work: smallvec::SmallVec<[f64; 16 * 16]> = smallvec::smallvec![0.0; 16 * n];
+    // (a plain array, not a SmallVec: building and moving its 2 KB was 1 % of a run)
+    let mut stack = [0.0f64; 16 * 16];
+    let mut heap = Vec::new();
+    let work: &mut [f64] = if n <= 16 {
+        &mut stack[..16 * n]
+    } else {
+        heap.resize(16 * n, 0.0);
+        &mut heap
+    };
     let (ln_eta, rest) = work.split_at_mut(n);
     let (eta_eff, rest) = rest.split_at_mut(n);
     let (mut y, rest) = rest.split_at_mut(n);
@@ -485,6 +501,9 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
         *l = e.ln();
     }
     let ln_eta: &[f64] = ln_eta;
+    // each point's law with its constants formed once (the temperatures are fixed here)
+    let closed: smallvec::SmallVec<[Option<LnShearLaw>; 16]> =
+        t.iter().map(|&tk| laws.ln_shear_law(p, tk)).collect();
     // the residual R(y) into r and the law's slopes into s
     let residual = |y: &[f64], eta_eff: &mut [f64], r: &mut [f64], s: &mut [f64]| {
         for k in 0..n {
@@ -493,8 +512,13 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
         let (ta, tb, _, _) = col.wall_stress(rule, eta_eff);
         for k in 0..n {
             let z = h * rule.points[k];
-            let tau = (ta + z * col.dpdx).hypot(tb + z * col.dpdy);
-            let (law, slope) = laws.ln_effective_viscosity(ln_eta[k], tau.ln() - y[k], p, t[k]);
+            let (tx, ty) = (ta + z * col.dpdx, tb + z * col.dpdy);
+            // ln |tau| = ln(tau_x^2 + tau_y^2) / 2 (no overflow: stresses below 1e150 Pa)
+            let ln_tau = 0.5 * (tx * tx + ty * ty).ln();
+            let (law, slope) = match &closed[k] {
+                Some(l) => l.eval(ln_eta[k], ln_tau - y[k]),
+                None => laws.ln_effective_viscosity(ln_eta[k], ln_tau - y[k], p, t[k]),
+            };
             if !law.is_finite() {
                 return Err(FilmError::Law {
                     law: "effective viscosity",
