@@ -31,7 +31,9 @@
 
 use super::collocation::Lobatto;
 use super::film::{FilmLaws, FilmProfile, OilThermal};
-use super::film_energy::{solve_lines, Line, LineOptions, LineSolution, LineTransient, SideFlow};
+use super::film_energy::{
+    solve_lines, ColumnStart, Line, LineOptions, LineSolution, LineTransient, SideFlow,
+};
 use super::solid::{MovingHalfSpace, SolidThermal};
 use crate::grid::Grid;
 use crate::lubricant::rheology::{
@@ -210,6 +212,10 @@ pub struct ThermalContact {
     /// per grid line, the shear-thinning factors eta_eff / eta of the last update (nx * nz;
     /// NaN: none yet), where the next update's column iterations start
     thinning: Vec<Vec<f64>>,
+    /// per grid line, the Poiseuille coefficients (rho/eta)_e of the last update's columns (nx;
+    /// NaN: none yet), where the next update's flux-driven columns start
+    /// (`film_energy::ColumnStart`)
+    poiseuille: Vec<Vec<f64>>,
     /// surface temperatures of body 1 and 2 (K), per cell
     surface: [Vec<f64>; 2],
     /// per grid line, the last solution (None before the first update)
@@ -288,6 +294,7 @@ impl ThermalContact {
             options: ContactOptions::default(),
             film: vec![vec![t0; grid.nx * nz]; grid.ny],
             thinning: vec![vec![f64::NAN; grid.nx * nz]; grid.ny],
+            poiseuille: vec![vec![f64::NAN; grid.nx]; grid.ny],
             surface: [vec![t0; n], vec![t0; n]],
             lines: vec![None; grid.ny],
             start: vec![0; grid.ny],
@@ -313,6 +320,7 @@ impl ThermalContact {
         self.rule = Lobatto::new(nz);
         self.film = vec![vec![t0; g.nx * nz]; g.ny];
         self.thinning = vec![vec![f64::NAN; g.nx * nz]; g.ny];
+        self.poiseuille = vec![vec![f64::NAN; g.nx]; g.ny];
         self.surface = [vec![t0; g.len()], vec![t0; g.len()]];
         self.lines = vec![None; g.ny];
         self.start = vec![0; g.ny];
@@ -557,9 +565,12 @@ impl ThermalContact {
                 .iter()
                 .map(|&j| self.film[j][start[j] * nz..len[j] * nz].to_vec())
                 .collect();
-            let thin: Vec<Vec<f64>> = rows
+            let warm: Vec<ColumnStart> = rows
                 .iter()
-                .map(|&j| self.thinning[j][start[j] * nz..len[j] * nz].to_vec())
+                .map(|&j| ColumnStart {
+                    thinning: &self.thinning[j][start[j] * nz..len[j] * nz],
+                    poiseuille: &self.poiseuille[j][start[j]..len[j]],
+                })
                 .collect();
             let out = solve_lines(
                 &self.rule,
@@ -567,7 +578,7 @@ impl ThermalContact {
                 &self.oil,
                 &lines,
                 Some(&from),
-                Some(&thin),
+                Some(&warm),
                 &opts.line,
             );
             let solved = out
@@ -624,6 +635,8 @@ impl ThermalContact {
                     let at = start[j] * nz;
                     self.film[j][at..at + s.t.len()].copy_from_slice(&s.t);
                     self.thinning[j][at..at + s.t.len()].copy_from_slice(&s.thinning);
+                    self.poiseuille[j][start[j]..start[j] + s.poiseuille.len()]
+                        .copy_from_slice(&s.poiseuille);
                 }
             }
             surface_change = change;
