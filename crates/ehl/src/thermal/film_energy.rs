@@ -276,6 +276,9 @@ pub struct LineCoefficients {
     pub heating_slope: Vec<f64>,
     /// the temperature the coefficients were taken at (K)
     pub temperature: Vec<f64>,
+    /// column profile solves these coefficients took (one per column, and the re-solves of
+    /// the flux-driven columns: [`FLUX_RESOLVES`], [`WARM_FLUX_RESOLVES`])
+    pub profile_solves: usize,
 }
 
 /// Energy accounting of a line for a temperature field and the coefficients it was solved
@@ -407,7 +410,8 @@ pub struct LineSolution {
     /// for the next solve of the line ([`solve_line_from`])
     pub thinning: Vec<f64>,
     /// the Poiseuille coefficients (rho/eta)_e of the last coefficients' columns (nx), the
-    /// other half of that start
+    /// other half of that start: each column's profile solve's own, before the limiting
+    /// shear stress's cap (where the cap acts, the profile in `profiles` is the capped one)
     pub poiseuille: Vec<f64>,
 }
 
@@ -419,7 +423,7 @@ pub const FLUX_RESOLVES: usize = 3;
 /// and started from the gradient its last Poiseuille coefficient gives: the fixed point goes
 /// on across the film iterations, each starting where the last stopped. Measured (2026-11-27,
 /// the Table 3.7 line at SRR 0.3 and the thesis roller 256 x 128 with Carreau at SRR 0.3):
-/// 3.6 -> 1.9 profile solves per column and 23-26 % off the whole thermal run, the central
+/// 3.6 -> 1.9 profile solves per column and 20-24 % off the whole thermal run, the central
 /// film, friction and largest film temperature within 1e-7 of the solution with the
 /// gradient's fixed point converged to 1e-10 in every column (the 3 cold re-solves: 1.2e-7).
 /// With none (the gradient lagged by one film iteration): one solve per column, 36 % off
@@ -487,6 +491,7 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
         mass_storage: vec![0.0; nx * nz],
         heating_slope: vec![0.0; nx * nz],
         temperature: t.to_vec(),
+        profile_solves: 0,
     };
     if thinning.len() != nx * nz || poiseuille.len() != nx {
         return Err(FilmError::Input(format!(
@@ -537,7 +542,9 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                 start[k] = eta[k] * factors[k];
             }
         }
-        let profile = |col: &Column, from: Option<&[f64]>| {
+        let mut solves = 0usize;
+        let mut profile = |col: &Column, from: Option<&[f64]>| {
+            solves += 1;
             shear_thinning_profile_from(rule, laws, col, p, ti, &eta, &rho, opts.shear, from)
         };
         // a flux-driven column (below) starts from the pressure gradient its last Poiseuille
@@ -553,7 +560,8 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
         let mut s = profile(&col, warm.then_some(start.as_slice()))?;
         // a flux-driven column: the pressure gradient that carries the target pressure-flow
         // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
-        // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved twice more).
+        // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved, at most
+        // FLUX_RESOLVES times, or WARM_FLUX_RESOLVES when it started warm).
         // Driving the column by its flux rather than its pressure gradient keeps the film's
         // fixed point bounded: at fixed dp/dx the pressure-flow heating (z dp/dx)^2 / eta grows
         // as the viscosity falls and the iteration runs away (measured at the Hertz outlet of
@@ -572,9 +580,12 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                 s = profile(&col, Some(&s.eta_eff))?;
             }
         }
+        c.profile_solves += solves;
         for k in 0..nz {
             factors[k] = s.eta_eff[k] / eta[k];
         }
+        // (before the limiting shear stress's cap below: the warm start is of this fixed
+        // point, the profile's own coefficient)
         poiseuille[i] = s.profile.rho_over_eta_e;
         if !s.converged {
             unconverged += 1;
@@ -1457,14 +1468,20 @@ mod tests {
     }
 
     /// A flux-driven shear-thinning line (the Poiseuille flux of a Newtonian film at the line's
-    /// gradient imposed, sliding at 2 m/s, shear thinning to eta_eff / eta ~ 0.1): solved
-    /// cold to 1e-9 K, every column's Poiseuille flux -(rho/eta)_e h^3/12 dp/dx of the final
-    /// profiles, with dp/dx recovered from the profile's whole flux, is the imposed one to
-    /// 1e-9 (the column solve's tolerance is 1e-10 in ln eta). Solved again from that
-    /// solution's warm start (its temperatures, shear-thinning factors and Poiseuille
-    /// coefficients) the line is where it was (1e-9 K) after one iteration. Fails if the warm
-    /// gradient is formed wrongly (it would take iterations to come back, and the flux would be
-    /// off after one).
+    /// gradient imposed, sliding at 2 m/s, the pressure-flow stress at the walls of the order
+    /// of the sliding one, so that the column's gradient is a fixed point that takes
+    /// re-solves; measured: 1.4 K warmer, eta_eff / eta down to 0.18): solved cold to 1e-9 K,
+    /// every column's Poiseuille flux -(rho/eta)_e h^3/12 dp/dx of the final profiles, with
+    /// dp/dx recovered from the profile's whole flux, is the imposed one to 1e-8 (measured
+    /// 3e-9: the gradient's fixed point goes on across the film iterations, two steps each,
+    /// and stops with them; the column solve's own tolerance is 1e-10 in ln eta). Solved again
+    /// from that solution's warm start (its temperatures, shear-thinning factors and
+    /// Poiseuille coefficients) the line is where it was (1e-9 K) after one iteration, at no
+    /// more than 2 profile solves a column ([`WARM_FLUX_RESOLVES`]), where the same
+    /// coefficients formed cold take more than 2 (measured 50 and 189 for 48 columns: the
+    /// test of the warm branch). Fails if the
+    /// warm gradient is formed wrongly (a 0.1 % error in it: the flux is off after one
+    /// re-solve) or not used.
     #[test]
     fn a_flux_driven_line_started_warm_is_where_it_was() {
         let law = ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4));
@@ -1474,7 +1491,7 @@ mod tests {
             .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
             .collect();
         let dpdx: Vec<f64> = (0..nx)
-            .map(|i| 2e12 * (std::f64::consts::PI * i as f64 / nx as f64).sin())
+            .map(|i| 5e12 * (std::f64::consts::PI * i as f64 / nx as f64).sin())
             .collect();
         let q: Vec<f64> = (0..nx)
             .map(|i| -870.0 / 0.5 * h[i].powi(3) / 12.0 * dpdx[i])
@@ -1498,13 +1515,13 @@ mod tests {
         let hot = cold.t.iter().fold(0.0f64, |m, &v| m.max(v)) - T0;
         assert!(hot > 1.0, "the film heats: {hot} K");
         let thinned = cold.thinning.iter().fold(1.0f64, |m, &v| m.min(v));
-        assert!(thinned < 0.3, "the film thins: eta_eff / eta down to {thinned}");
+        assert!(thinned < 0.25, "the film thins: eta_eff / eta down to {thinned}");
         for (i, pr) in cold.profiles.iter().enumerate() {
             let a = -pr.rho_over_eta_e * h[i].powi(3) / 12.0;
             let g = (pr.flux_x - pr.rho_star_ue * h[i]) / a;
             let poiseuille = a * g;
             assert!(
-                (poiseuille - q[i]).abs() <= 1e-9 * q[i].abs().max(1e-12),
+                (poiseuille - q[i]).abs() <= 1e-8 * q[i].abs().max(1e-12),
                 "cell {i}: Poiseuille flux {poiseuille:e} against {:e}",
                 q[i]
             );
@@ -1523,6 +1540,15 @@ mod tests {
             .zip(&cold.t)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         assert!(moved < 1e-9, "moved by {moved:e} K");
+        let (mut thin, mut nothing) = (cold.thinning.clone(), vec![f64::NAN; nx]);
+        let (unwarmed, _, _) =
+            line_coefficients_from(&rule, &law, &line, &cold.t, &opts, &mut thin, &mut nothing)
+                .unwrap();
+        let (warm_solves, cold_solves) = (again.coefficients.profile_solves, unwarmed.profile_solves);
+        assert!(
+            warm_solves <= 2 * nx && cold_solves > 2 * nx,
+            "profile solves: {warm_solves} warm, {cold_solves} cold, {nx} columns"
+        );
     }
 
     /// The floor's margin: 30 K on an unloaded line and an incompressible oil; 1.5 times the
