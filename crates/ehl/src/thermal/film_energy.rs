@@ -426,8 +426,9 @@ pub const FLUX_RESOLVES: usize = 3;
 /// 3.6 -> 1.9 profile solves per column and 20-24 % off the whole thermal run, the central
 /// film, friction and largest film temperature within 1e-7 of the solution with the
 /// gradient's fixed point converged to 1e-10 in every column (the 3 cold re-solves: 1.2e-7).
-/// With none (the gradient lagged by one film iteration): one solve per column, 36 % off
-/// the roller, but 2e-6 off on the line.
+/// With none (the gradient lagged by one film iteration): one solve per column, 12-36 % off
+/// the roller, but 2e-6 off on the line, and the thermal map of docs/thermal.md (the Table
+/// 3.7 line over SRR and L) settled in 1 of its 20 runs instead of 15.
 pub const WARM_FLUX_RESOLVES: usize = 1;
 
 /// Where the column iterations of a line start ([`line_coefficients_from`]), one line's worth,
