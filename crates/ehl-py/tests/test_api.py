@@ -361,9 +361,12 @@ def test_a_thermal_solve_reports_progress_that_never_goes_back():
     # the isothermal start filled the bar to 0.95 and the thermal iterations then reported 0.9
     # (a scan); now the fractions only grow, and the thermal ones come after the start's
     c = ehl.Case.from_file(example("ehl_thermal_line.toml"))
-    c.set("grid.nx", 128)
+    c.set("grid.nx", 256)
     seen = []
-    ehl.solve(c, progress=lambda f, m: seen.append((f, m)))
+    # the callback gets the latest report once per poll: at the default 0.05 s poll the thermal
+    # iterations of a 128-cell line (~30 ms since 2026-11-27) could pass unseen, so poll every
+    # millisecond on a line twice as long
+    ehl._solve(c, lambda f, m: seen.append((f, m)), 0.001)
     known = [f for f, _ in seen if f == f]
     assert known == sorted(known), known
     assert any(m.startswith("thermal") for _, m in seen) and seen[-1][0] == 1.0
