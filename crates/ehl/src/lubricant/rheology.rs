@@ -148,9 +148,14 @@ pub fn ln_effective_viscosity(model: &Rheology, ln_eta: f64, ln_shear_rate: f64)
 pub enum LnShearLaw {
     Newtonian,
     /// e = (n - 1) / 2, ln G_f (G_f in Pa)
-    Carreau { e: f64, ln_g: f64 },
+    Carreau {
+        e: f64,
+        ln_g: f64,
+    },
     /// ln tau_0 (tau_0 in Pa)
-    Eyring { ln_tau0: f64 },
+    Eyring {
+        ln_tau0: f64,
+    },
 }
 
 impl LnShearLaw {

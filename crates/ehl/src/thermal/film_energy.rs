@@ -82,7 +82,8 @@
 
 use super::collocation::Lobatto;
 use super::film::{
-    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, ShearOptions,
+    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, PointValues,
+    ShearOptions,
 };
 use crate::linalg::anderson::Anderson;
 use crate::linalg::banded::Banded;
@@ -503,157 +504,234 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
             nx
         )));
     }
-    let mut profiles = Vec::with_capacity(nx);
-    let mut start = vec![0.0; nz];
-    let mut unconverged = 0;
-    let (mut eta, mut rho, mut drho) = (vec![0.0; nz], vec![0.0; nz], vec![0.0; nz]);
-    for i in 0..nx {
-        let p = line.p[i];
-        let ti = &t[i * nz..(i + 1) * nz];
-        for k in 0..nz {
-            let check = |law: &'static str, value: f64| {
-                if value > 0.0 && value.is_finite() {
-                    Ok(value)
-                } else {
-                    Err(FilmError::Law {
-                        law,
-                        value,
-                        p,
-                        t: ti[k],
-                    })
+    // the columns are independent: solved in parallel (a line contact has one line, whose
+    // columns are then the only parallel work of the film), each into its own slots
+    let slots = c
+        .mass_flux
+        .par_chunks_mut(nz)
+        .zip(c.heating.par_chunks_mut(nz))
+        .zip(c.compression.par_chunks_mut(nz))
+        .zip(c.density.par_chunks_mut(nz))
+        .zip(c.mass_storage.par_chunks_mut(nz))
+        .zip(c.heating_slope.par_chunks_mut(nz))
+        .zip(thinning.par_chunks_mut(nz))
+        .zip(poiseuille.par_iter_mut())
+        .map(
+            |(
+                (
+                    (((((mass_flux, heating), compression), density), mass_storage), heating_slope),
+                    factors,
+                ),
+                poiseuille,
+            )| {
+                ColumnSlots {
+                    mass_flux,
+                    heating,
+                    compression,
+                    density,
+                    mass_storage,
+                    heating_slope,
+                    factors,
+                    poiseuille,
                 }
-            };
-            eta[k] = check("viscosity", laws.viscosity(p, ti[k]))?;
-            rho[k] = check("density", laws.density(p, ti[k]))?;
-            drho[k] = laws.density_dt(p, ti[k]);
-            if !drho[k].is_finite() {
-                return Err(FilmError::Law {
-                    law: "density derivative",
-                    value: drho[k],
+            },
+        );
+    let solved: Vec<Result<(FilmProfile, bool, usize), FilmError>> = slots
+        .enumerate()
+        .with_min_len(COLUMNS_PER_TASK)
+        .map(|(i, out)| column_coefficients(rule, laws, line, t, opts, i, out))
+        .collect();
+    let mut profiles = Vec::with_capacity(nx);
+    let mut unconverged = 0;
+    let mut solves = 0;
+    for r in solved {
+        let (f, converged, n) = r?;
+        profiles.push(f);
+        unconverged += usize::from(!converged);
+        solves += n;
+    }
+    c.profile_solves = solves;
+    Ok((c, profiles, unconverged))
+}
+
+/// Columns of a line per rayon task in [`line_coefficients_from`] (each two or so profile
+/// solves of ~1 us).
+const COLUMNS_PER_TASK: usize = 8;
+
+/// Where one column's coefficients go in [`line_coefficients_from`] (nz values each, its
+/// warm start in `factors` and `poiseuille`, overwritten).
+struct ColumnSlots<'a> {
+    mass_flux: &'a mut [f64],
+    heating: &'a mut [f64],
+    compression: &'a mut [f64],
+    density: &'a mut [f64],
+    mass_storage: &'a mut [f64],
+    heating_slope: &'a mut [f64],
+    factors: &'a mut [f64],
+    poiseuille: &'a mut f64,
+}
+
+/// Column `i` of [`line_coefficients_from`]: the laws at its points, its profile (the
+/// shear-thinning iteration, the flux-driven gradient, the limiting shear stress's cap) and
+/// its coefficients into `out`; returns the profile, whether its shear-thinning iteration
+/// converged, and the profile solves it took.
+fn column_coefficients<L: FilmLaws + ?Sized>(
+    rule: &Lobatto,
+    laws: &L,
+    line: &Line,
+    t: &[f64],
+    opts: &LineOptions,
+    i: usize,
+    out: ColumnSlots<'_>,
+) -> Result<(FilmProfile, bool, usize), FilmError> {
+    let nz = rule.len();
+    let mut start: PointValues = smallvec::smallvec![0.0; nz];
+    let (mut eta, mut rho, mut drho): (PointValues, PointValues, PointValues) = (
+        smallvec::smallvec![0.0; nz],
+        smallvec::smallvec![0.0; nz],
+        smallvec::smallvec![0.0; nz],
+    );
+    let p = line.p[i];
+    let ti = &t[i * nz..(i + 1) * nz];
+    for k in 0..nz {
+        let check = |law: &'static str, value: f64| {
+            if value > 0.0 && value.is_finite() {
+                Ok(value)
+            } else {
+                Err(FilmError::Law {
+                    law,
+                    value,
                     p,
                     t: ti[k],
-                });
+                })
             }
-        }
-        let mut col = line.column(i);
-        let factors = &mut thinning[i * nz..(i + 1) * nz];
-        let warm = factors.iter().all(|f| *f > 0.0 && f.is_finite());
-        if warm {
-            for k in 0..nz {
-                start[k] = eta[k] * factors[k];
-            }
-        }
-        let mut solves = 0usize;
-        let mut profile = |col: &Column, from: Option<&[f64]>| {
-            solves += 1;
-            shear_thinning_profile_from(rule, laws, col, p, ti, &eta, &rho, opts.shear, from)
         };
-        // a flux-driven column (below) starts from the pressure gradient its last Poiseuille
-        // coefficient gives for the target flux, where it has one
-        let mut resolves = FLUX_RESOLVES;
-        if let (Some(q), true) = (line.poiseuille_flux_x, poiseuille[i] > 0.0) {
-            let g = q[i] / (-poiseuille[i] * col.h.powi(3) / 12.0);
-            if g.is_finite() {
-                col.dpdx = g;
-                resolves = WARM_FLUX_RESOLVES;
-            }
+        eta[k] = check("viscosity", laws.viscosity(p, ti[k]))?;
+        rho[k] = check("density", laws.density(p, ti[k]))?;
+        drho[k] = laws.density_dt(p, ti[k]);
+        if !drho[k].is_finite() {
+            return Err(FilmError::Law {
+                law: "density derivative",
+                value: drho[k],
+                p,
+                t: ti[k],
+            });
         }
-        let mut s = profile(&col, warm.then_some(start.as_slice()))?;
-        // a flux-driven column: the pressure gradient that carries the target pressure-flow
-        // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
-        // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved, at most
-        // FLUX_RESOLVES times, or WARM_FLUX_RESOLVES when it started warm).
-        // Driving the column by its flux rather than its pressure gradient keeps the film's
-        // fixed point bounded: at fixed dp/dx the pressure-flow heating (z dp/dx)^2 / eta grows
-        // as the viscosity falls and the iteration runs away (measured at the Hertz outlet of
-        // the thesis Table 3.7 line at SRR 0.3); at fixed flux dp/dx falls with the viscosity.
-        // Only the Poiseuille part is imposed: matching the whole flux would divide a small
-        // difference of the Couette fluxes by a vanishing Poiseuille coefficient in the Hertz
-        // zone (measured: dp/dx and the temperature ran to -6000 K there).
-        if let Some(q) = line.poiseuille_flux_x {
-            for _ in 0..resolves {
-                let a = -s.profile.rho_over_eta_e * col.h.powi(3) / 12.0;
-                let g = q[i] / a;
-                if !g.is_finite() || (g - col.dpdx).abs() <= 1e-12 * g.abs().max(1.0) {
+    }
+    let mut col = line.column(i);
+    let factors = &mut *out.factors;
+    let warm = factors.iter().all(|f| *f > 0.0 && f.is_finite());
+    if warm {
+        for k in 0..nz {
+            start[k] = eta[k] * factors[k];
+        }
+    }
+    let mut solves = 0usize;
+    let mut profile = |col: &Column, from: Option<&[f64]>| {
+        solves += 1;
+        shear_thinning_profile_from(rule, laws, col, p, ti, &eta, &rho, opts.shear, from)
+    };
+    // a flux-driven column (below) starts from the pressure gradient its last Poiseuille
+    // coefficient gives for the target flux, where it has one
+    let mut resolves = FLUX_RESOLVES;
+    if let (Some(q), true) = (line.poiseuille_flux_x, *out.poiseuille > 0.0) {
+        let g = q[i] / (-*out.poiseuille * col.h.powi(3) / 12.0);
+        if g.is_finite() {
+            col.dpdx = g;
+            resolves = WARM_FLUX_RESOLVES;
+        }
+    }
+    let mut s = profile(&col, warm.then_some(start.as_slice()))?;
+    // a flux-driven column: the pressure gradient that carries the target pressure-flow
+    // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
+    // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved, at most
+    // FLUX_RESOLVES times, or WARM_FLUX_RESOLVES when it started warm).
+    // Driving the column by its flux rather than its pressure gradient keeps the film's
+    // fixed point bounded: at fixed dp/dx the pressure-flow heating (z dp/dx)^2 / eta grows
+    // as the viscosity falls and the iteration runs away (measured at the Hertz outlet of
+    // the thesis Table 3.7 line at SRR 0.3); at fixed flux dp/dx falls with the viscosity.
+    // Only the Poiseuille part is imposed: matching the whole flux would divide a small
+    // difference of the Couette fluxes by a vanishing Poiseuille coefficient in the Hertz
+    // zone (measured: dp/dx and the temperature ran to -6000 K there).
+    if let Some(q) = line.poiseuille_flux_x {
+        for _ in 0..resolves {
+            let a = -s.profile.rho_over_eta_e * col.h.powi(3) / 12.0;
+            let g = q[i] / a;
+            if !g.is_finite() || (g - col.dpdx).abs() <= 1e-12 * g.abs().max(1.0) {
+                break;
+            }
+            col.dpdx = g;
+            s = profile(&col, Some(&s.eta_eff))?;
+        }
+    }
+    for k in 0..nz {
+        factors[k] = s.eta_eff[k] / eta[k];
+    }
+    // (before the limiting shear stress's cap below: the warm start is of this fixed
+    // point, the profile's own coefficient)
+    *out.poiseuille = s.profile.rho_over_eta_e;
+    let converged = s.converged;
+    let mut f = s.profile;
+    // the limiting shear stress (Bair & Winer 1979; thesis eq. 2.13-2.14) as a cap on the
+    // column: where the largest |tau| exceeds tau_L, the effective viscosity is scaled down
+    // uniformly by tau_L / max |tau| (twice, the pressure-flow part not scaling), so that the
+    // sliding stress sits at the limit and the heating (tau^2 / eta) falls with it, as the
+    // heat of a film slipping at its limit, tau_L |u1 - u2|, does. Applied only where the
+    // limit exceeds the column's pressure-flow stress range h |grad p| (the sliding part alone
+    // can then meet it); in the low-pressure inlet, where tau_L = Lambda p falls below that,
+    // the column keeps the law without the cap (its stresses are kPa there). Between the two
+    // the cap is phased in, the scaling r taken to the power CAP_BLEND = clamp(tau_L / range
+    // - 1, 0, 1): switched on and off abruptly, columns at the threshold flipped between
+    // capped and free from one outer iteration to the next and the factors never settled
+    // (measured: a ball at 1 m/s, SRR 1, Carreau with Lambda 0.07, 80 outer iterations with
+    // the flow factor of a few cells cycling by 0.15 in log, the temperatures settled).
+    let tmid = ti[nz / 2];
+    if let Some(cap) = laws.limiting_shear_stress(p, tmid) {
+        let range = col.h * col.dpdx.hypot(col.dpdy);
+        let blend = if range > 0.0 {
+            (cap / range - 1.0).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        if blend > 0.0 && cap > 0.0 {
+            let mut eta_eff = s.eta_eff;
+            for _ in 0..2 {
+                let top = f
+                    .tau_zx
+                    .iter()
+                    .zip(&f.tau_zy)
+                    .fold(0.0f64, |m, (a, b)| m.max(a.hypot(*b)));
+                if top <= cap {
                     break;
                 }
-                col.dpdx = g;
-                s = profile(&col, Some(&s.eta_eff))?;
+                let r = (cap / top).powf(blend);
+                eta_eff.iter_mut().for_each(|e| *e *= r);
+                f = super::film::velocity_profile(rule, &col, &eta_eff, &rho)?;
             }
         }
-        c.profile_solves += solves;
-        for k in 0..nz {
-            factors[k] = s.eta_eff[k] / eta[k];
-        }
-        // (before the limiting shear stress's cap below: the warm start is of this fixed
-        // point, the profile's own coefficient)
-        poiseuille[i] = s.profile.rho_over_eta_e;
-        if !s.converged {
-            unconverged += 1;
-        }
-        let mut f = s.profile;
-        // the limiting shear stress (Bair & Winer 1979; thesis eq. 2.13-2.14) as a cap on the
-        // column: where the largest |tau| exceeds tau_L, the effective viscosity is scaled down
-        // uniformly by tau_L / max |tau| (twice, the pressure-flow part not scaling), so that the
-        // sliding stress sits at the limit and the heating (tau^2 / eta) falls with it, as the
-        // heat of a film slipping at its limit, tau_L |u1 - u2|, does. Applied only where the
-        // limit exceeds the column's pressure-flow stress range h |grad p| (the sliding part alone
-        // can then meet it); in the low-pressure inlet, where tau_L = Lambda p falls below that,
-        // the column keeps the law without the cap (its stresses are kPa there). Between the two
-        // the cap is phased in, the scaling r taken to the power CAP_BLEND = clamp(tau_L / range
-        // - 1, 0, 1): switched on and off abruptly, columns at the threshold flipped between
-        // capped and free from one outer iteration to the next and the factors never settled
-        // (measured: a ball at 1 m/s, SRR 1, Carreau with Lambda 0.07, 80 outer iterations with
-        // the flow factor of a few cells cycling by 0.15 in log, the temperatures settled).
-        let tmid = ti[nz / 2];
-        if let Some(cap) = laws.limiting_shear_stress(p, tmid) {
-            let range = col.h * col.dpdx.hypot(col.dpdy);
-            let blend = if range > 0.0 {
-                (cap / range - 1.0).clamp(0.0, 1.0)
-            } else {
-                1.0
-            };
-            if blend > 0.0 && cap > 0.0 {
-                let mut eta_eff = s.eta_eff;
-                for _ in 0..2 {
-                    let top = f
-                        .tau_zx
-                        .iter()
-                        .zip(&f.tau_zy)
-                        .fold(0.0f64, |m, (a, b)| m.max(a.hypot(*b)));
-                    if top <= cap {
-                        break;
-                    }
-                    let r = (cap / top).powf(blend);
-                    eta_eff.iter_mut().for_each(|e| *e *= r);
-                    f = super::film::velocity_profile(rule, &col, &eta_eff, &rho)?;
-                }
-            }
-        }
-        for k in 0..nz {
-            let at = i * nz + k;
-            c.mass_flux[at] = col.h * rho[k] * f.u[k];
-            c.heating[at] = if opts.shear_heating {
-                f.heating[k]
-            } else {
-                0.0
-            };
-            c.compression[at] = drho[k] / rho[k] * (f.u[k] * col.dpdx + f.v[k] * col.dpdy);
-            c.density[at] = rho[k];
-            if opts.linearise_heating && c.heating[at] > 0.0 {
-                c.heating_slope[at] =
-                    laws.viscosity_temperature_coefficient(p, ti[k]) * c.heating[at];
-            }
-            if let Some(tr) = &line.transient {
-                let old = tr.rho_h_old[at];
-                if old.is_finite() {
-                    c.mass_storage[at] = (col.h * rho[k] - old) * tr.inv_dt;
-                }
-            }
-        }
-        profiles.push(f);
     }
-    Ok((c, profiles, unconverged))
+    for k in 0..nz {
+        let at = i * nz + k;
+        out.mass_flux[k] = col.h * rho[k] * f.u[k];
+        out.heating[k] = if opts.shear_heating {
+            f.heating[k]
+        } else {
+            0.0
+        };
+        out.compression[k] = drho[k] / rho[k] * (f.u[k] * col.dpdx + f.v[k] * col.dpdy);
+        out.density[k] = rho[k];
+        if opts.linearise_heating && out.heating[k] > 0.0 {
+            out.heating_slope[k] =
+                laws.viscosity_temperature_coefficient(p, ti[k]) * out.heating[k];
+        }
+        if let Some(tr) = &line.transient {
+            let old = tr.rho_h_old[at];
+            if old.is_finite() {
+                out.mass_storage[k] = (col.h * rho[k] - old) * tr.inv_dt;
+            }
+        }
+    }
+    Ok((f, converged, solves))
 }
 
 /// Per point, what a column loses per unit zeta other than by the x-flow (kg/(m^2 s)): the
@@ -1219,19 +1297,26 @@ pub fn solve_line_from<L: FilmLaws + ?Sized>(
         iterations += 1;
         let mut o = *opts;
         o.linearise_heating = linearise;
-        let (coef, profiles, shear_unconverged) =
-            match line_coefficients_from(rule, laws, line, &t, &o, &mut thinning, &mut poiseuille) {
-                Ok(c) => c,
-                Err(FilmError::Law { .. })
-                    if opts.linearise_heating && !linearise && iterations > 1 =>
-                {
-                    linearise = true;
-                    t.copy_from_slice(&before);
-                    mixing.clear();
-                    continue;
-                }
-                Err(e) => return Err(e),
-            };
+        let (coef, profiles, shear_unconverged) = match line_coefficients_from(
+            rule,
+            laws,
+            line,
+            &t,
+            &o,
+            &mut thinning,
+            &mut poiseuille,
+        ) {
+            Ok(c) => c,
+            Err(FilmError::Law { .. })
+                if opts.linearise_heating && !linearise && iterations > 1 =>
+            {
+                linearise = true;
+                t.copy_from_slice(&before);
+                mixing.clear();
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
         let solved = solve_line_linear(rule, oil, line, &coef)?;
         let change = solved
             .iter()
@@ -1516,7 +1601,10 @@ mod tests {
         let hot = cold.t.iter().fold(0.0f64, |m, &v| m.max(v)) - T0;
         assert!(hot > 1.0, "the film heats: {hot} K");
         let thinned = cold.thinning.iter().fold(1.0f64, |m, &v| m.min(v));
-        assert!(thinned < 0.25, "the film thins: eta_eff / eta down to {thinned}");
+        assert!(
+            thinned < 0.25,
+            "the film thins: eta_eff / eta down to {thinned}"
+        );
         for (i, pr) in cold.profiles.iter().enumerate() {
             let a = -pr.rho_over_eta_e * h[i].powi(3) / 12.0;
             let g = (pr.flux_x - pr.rho_star_ue * h[i]) / a;
@@ -1532,8 +1620,8 @@ mod tests {
             thinning: &cold.thinning,
             poiseuille: &cold.poiseuille,
         };
-        let again = solve_line_from(&rule, &law, &OIL, &line, Some(&cold.t), Some(warm), &opts)
-            .unwrap();
+        let again =
+            solve_line_from(&rule, &law, &OIL, &line, Some(&cold.t), Some(warm), &opts).unwrap();
         assert_eq!(again.iterations, 1);
         let moved = again
             .t
@@ -1545,7 +1633,8 @@ mod tests {
         let (unwarmed, _, _) =
             line_coefficients_from(&rule, &law, &line, &cold.t, &opts, &mut thin, &mut nothing)
                 .unwrap();
-        let (warm_solves, cold_solves) = (again.coefficients.profile_solves, unwarmed.profile_solves);
+        let (warm_solves, cold_solves) =
+            (again.coefficients.profile_solves, unwarmed.profile_solves);
         assert!(
             warm_solves <= 2 * nx && cold_solves > 2 * nx,
             "profile solves: {warm_solves} warm, {cold_solves} cold, {nx} columns"
