@@ -82,8 +82,7 @@
 
 use super::collocation::Lobatto;
 use super::film::{
-    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, PointValues,
-    ShearOptions,
+    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal, ShearOptions,
 };
 use crate::linalg::anderson::Anderson;
 use crate::linalg::banded::Banded;
@@ -367,6 +366,10 @@ pub struct LineOptions {
     /// with the heating's fall with temperature implicit ([`LineCoefficients::heating_slope`];
     /// see [`solve_line_from`]); false: the plain iteration throughout, for comparison
     pub linearise_heating: bool,
+    /// solve the columns of the line in parallel ([`line_coefficients_from`]); [`solve_lines`]
+    /// turns it off where its lines alone keep every thread busy (nested tasks cost a 2D
+    /// contact 5 %: the thermal pit passage at 256 x 256)
+    pub parallel_columns: bool,
 }
 
 impl Default for LineOptions {
@@ -379,6 +382,7 @@ impl Default for LineOptions {
             shear: ShearOptions::default(),
             shear_heating: true,
             linearise_heating: true,
+            parallel_columns: true,
         }
     }
 }
@@ -504,18 +508,19 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
             nx
         )));
     }
-    // the columns are independent: solved in parallel (a line contact has one line, whose
-    // columns are then the only parallel work of the film), each into its own slots
-    let slots = c
+    // the columns are independent, each written into its own slots: solved in parallel where
+    // the caller's lines do not keep the threads busy (a line contact has one line, whose
+    // columns are then the film's only parallel work), else one after the other
+    let slots: Vec<ColumnSlots> = c
         .mass_flux
-        .par_chunks_mut(nz)
-        .zip(c.heating.par_chunks_mut(nz))
-        .zip(c.compression.par_chunks_mut(nz))
-        .zip(c.density.par_chunks_mut(nz))
-        .zip(c.mass_storage.par_chunks_mut(nz))
-        .zip(c.heating_slope.par_chunks_mut(nz))
-        .zip(thinning.par_chunks_mut(nz))
-        .zip(poiseuille.par_iter_mut())
+        .chunks_mut(nz)
+        .zip(c.heating.chunks_mut(nz))
+        .zip(c.compression.chunks_mut(nz))
+        .zip(c.density.chunks_mut(nz))
+        .zip(c.mass_storage.chunks_mut(nz))
+        .zip(c.heating_slope.chunks_mut(nz))
+        .zip(thinning.chunks_mut(nz))
+        .zip(poiseuille.iter_mut())
         .map(
             |(
                 (
@@ -523,32 +528,48 @@ pub fn line_coefficients_from<L: FilmLaws + ?Sized>(
                     factors,
                 ),
                 poiseuille,
-            )| {
-                ColumnSlots {
-                    mass_flux,
-                    heating,
-                    compression,
-                    density,
-                    mass_storage,
-                    heating_slope,
-                    factors,
-                    poiseuille,
-                }
+            )| ColumnSlots {
+                mass_flux,
+                heating,
+                compression,
+                density,
+                mass_storage,
+                heating_slope,
+                factors,
+                poiseuille,
             },
-        );
-    let solved: Vec<Result<(FilmProfile, bool, usize), FilmError>> = slots
-        .enumerate()
-        .with_min_len(COLUMNS_PER_TASK)
-        .map(|(i, out)| column_coefficients(rule, laws, line, t, opts, i, out))
+        )
         .collect();
     let mut profiles = Vec::with_capacity(nx);
-    let mut unconverged = 0;
-    let mut solves = 0;
-    for r in solved {
-        let (f, converged, n) = r?;
-        profiles.push(f);
-        unconverged += usize::from(!converged);
-        solves += n;
+    let (mut unconverged, mut solves) = (0, 0);
+    if opts.parallel_columns {
+        let solved: Vec<Result<(FilmProfile, bool, usize), FilmError>> = slots
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(COLUMNS_PER_TASK)
+            .map(|(i, out)| {
+                let mut profile = None;
+                column_coefficients(rule, laws, line, t, opts, i, out, |f| profile = Some(f)).map(
+                    |(converged, n)| (profile.expect("a column emits its profile"), converged, n),
+                )
+            })
+            .collect();
+        // the first error in column order, as one after the other
+        for r in solved {
+            let (f, converged, n) = r?;
+            profiles.push(f);
+            unconverged += usize::from(!converged);
+            solves += n;
+        }
+    } else {
+        // (the profile goes straight into the list: an extra move of its ~1 KB per column
+        // was 2-3 % of a 2D thermal run)
+        for (i, out) in slots.into_iter().enumerate() {
+            let (converged, n) =
+                column_coefficients(rule, laws, line, t, opts, i, out, |f| profiles.push(f))?;
+            unconverged += usize::from(!converged);
+            solves += n;
+        }
     }
     c.profile_solves = solves;
     Ok((c, profiles, unconverged))
@@ -573,8 +594,9 @@ struct ColumnSlots<'a> {
 
 /// Column `i` of [`line_coefficients_from`]: the laws at its points, its profile (the
 /// shear-thinning iteration, the flux-driven gradient, the limiting shear stress's cap) and
-/// its coefficients into `out`; returns the profile, whether its shear-thinning iteration
-/// converged, and the profile solves it took.
+/// its coefficients into `out`; gives the profile to `emit` and returns whether its
+/// shear-thinning iteration converged and the profile solves it took.
+#[allow(clippy::too_many_arguments)]
 fn column_coefficients<L: FilmLaws + ?Sized>(
     rule: &Lobatto,
     laws: &L,
@@ -583,14 +605,21 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     opts: &LineOptions,
     i: usize,
     out: ColumnSlots<'_>,
-) -> Result<(FilmProfile, bool, usize), FilmError> {
+    emit: impl FnOnce(FilmProfile),
+) -> Result<(bool, usize), FilmError> {
     let nz = rule.len();
-    let mut start: PointValues = smallvec::smallvec![0.0; nz];
-    let (mut eta, mut rho, mut drho): (PointValues, PointValues, PointValues) = (
-        smallvec::smallvec![0.0; nz],
-        smallvec::smallvec![0.0; nz],
-        smallvec::smallvec![0.0; nz],
-    );
+    // the points' scratch on the stack up to 16 points (as the column solve's)
+    let mut stack = [0.0f64; 4 * 16];
+    let mut heap = Vec::new();
+    let work: &mut [f64] = if nz <= 16 {
+        &mut stack[..4 * nz]
+    } else {
+        heap.resize(4 * nz, 0.0);
+        &mut heap
+    };
+    let (start, rest) = work.split_at_mut(nz);
+    let (eta, rest) = rest.split_at_mut(nz);
+    let (rho, drho) = rest.split_at_mut(nz);
     let p = line.p[i];
     let ti = &t[i * nz..(i + 1) * nz];
     for k in 0..nz {
@@ -641,7 +670,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
             resolves = WARM_FLUX_RESOLVES;
         }
     }
-    let mut s = profile(&col, warm.then_some(start.as_slice()))?;
+    let mut s = profile(&col, warm.then_some(&*start))?;
     // a flux-driven column: the pressure gradient that carries the target pressure-flow
     // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
     // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved, at most
@@ -731,7 +760,8 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
             }
         }
     }
-    Ok((f, converged, solves))
+    emit(f);
+    Ok((converged, solves))
 }
 
 /// Per point, what a column loses per unit zeta other than by the x-flow (kg/(m^2 s)): the
@@ -1423,13 +1453,18 @@ pub fn solve_lines<L: FilmLaws + ?Sized>(
     warm: Option<&[ColumnStart<'_>]>,
     opts: &LineOptions,
 ) -> Vec<Result<LineSolution, FilmError>> {
+    // the columns of each line in parallel only while there are fewer lines than threads
+    let opts = LineOptions {
+        parallel_columns: opts.parallel_columns && lines.len() < rayon::current_num_threads(),
+        ..*opts
+    };
     lines
         .par_iter()
         .enumerate()
         .map(|(j, line)| {
             let s = t_start.map(|s| s[j].as_slice());
             let f = warm.map(|f| f[j]);
-            solve_line_from(rule, laws, oil, line, s, f, opts)
+            solve_line_from(rule, laws, oil, line, s, f, &opts)
         })
         .collect()
 }
@@ -1639,6 +1674,57 @@ mod tests {
             warm_solves <= 2 * nx && cold_solves > 2 * nx,
             "profile solves: {warm_solves} warm, {cold_solves} cold, {nx} columns"
         );
+    }
+
+    /// The columns of a line solved in parallel or one after the other give the same
+    /// coefficients, profiles and warm starts to the bit (each column writes only its own
+    /// slots), and the same error: the first in column order (two columns made to fail by
+    /// temperatures at which the viscosity underflows).
+    #[test]
+    fn columns_in_parallel_are_the_columns_one_after_the_other() {
+        let law = ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4));
+        let rule = Lobatto::new(7);
+        let nx = 96;
+        let h: Vec<f64> = (0..nx)
+            .map(|i| 0.4e-6 * (1.0 + (i as f64 / 40.0).powi(2)))
+            .collect();
+        let dpdx: Vec<f64> = (0..nx).map(|i| 3e12 * (0.1 * i as f64).sin()).collect();
+        let q: Vec<f64> = (0..nx)
+            .map(|i| -870.0 / 0.5 * h[i].powi(3) / 12.0 * dpdx[i])
+            .collect();
+        let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
+        let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
+        line.poiseuille_flux_x = Some(&q);
+        let nz = rule.len();
+        let t: Vec<f64> = (0..nx * nz)
+            .map(|at| T0 + 0.01 * (at % 13) as f64)
+            .collect();
+        let run = |parallel: bool, t: &[f64]| {
+            let opts = LineOptions {
+                parallel_columns: parallel,
+                ..LineOptions::default()
+            };
+            let (mut thin, mut pois) = (vec![f64::NAN; nx * nz], vec![f64::NAN; nx]);
+            line_coefficients_from(&rule, &law, &line, t, &opts, &mut thin, &mut pois)
+                .map(|(c, profiles, unconverged)| (c, profiles, unconverged, thin, pois))
+        };
+        let (a, b) = (run(true, &t).unwrap(), run(false, &t).unwrap());
+        assert_eq!(a.0.mass_flux, b.0.mass_flux);
+        assert_eq!(a.0.heating, b.0.heating);
+        assert_eq!(a.0.compression, b.0.compression);
+        assert_eq!(a.0.heating_slope, b.0.heating_slope);
+        assert_eq!(a.0.profile_solves, b.0.profile_solves);
+        assert!(a.0.profile_solves > nx, "{}", a.0.profile_solves);
+        assert_eq!(a.1, b.1);
+        assert_eq!((a.2, &a.3, &a.4), (b.2, &b.3, &b.4));
+        // absurd temperatures at two columns: the viscosity underflows to 0 there, and the
+        // error names the first column's
+        let mut bad = t.clone();
+        bad[70 * nz + 3] = 2e5;
+        bad[20 * nz + 2] = 1e5;
+        let (ea, eb) = (run(true, &bad).unwrap_err(), run(false, &bad).unwrap_err());
+        assert_eq!(ea, eb);
+        assert!(matches!(ea, FilmError::Law { t, .. } if t == 1e5), "{ea:?}");
     }
 
     /// The floor's margin: 30 K on an unloaded line and an incompressible oil; 1.5 times the
