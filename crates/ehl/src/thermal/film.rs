@@ -385,6 +385,24 @@ pub fn velocity_profile(
     })
 }
 
+/// `len` zeros for a column's scratch: the start of `stack` where they fit (no allocation in the
+/// column loops, which run once per column and film iteration), else `heap` grown to them.
+pub(crate) fn scratch<'a>(
+    stack: &'a mut [f64],
+    heap: &'a mut Vec<f64>,
+    len: usize,
+) -> &'a mut [f64] {
+    if len <= stack.len() {
+        let s = &mut stack[..len];
+        s.fill(0.0);
+        s
+    } else {
+        heap.clear();
+        heap.resize(len, 0.0);
+        heap
+    }
+}
+
 /// Options of the shear-thinning iteration of [`shear_thinning_profile`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShearOptions {
@@ -474,14 +492,8 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     // film column per film iteration, and its ~15 small vectors were 11 % of a thermal
     // transient run (perf, the thesis pit at 128 x 128)
     // (a plain array, not a SmallVec: building and moving its 2 KB was 1 % of a run)
-    let mut stack = [0.0f64; 16 * 16];
-    let mut heap = Vec::new();
-    let work: &mut [f64] = if n <= 16 {
-        &mut stack[..16 * n]
-    } else {
-        heap.resize(16 * n, 0.0);
-        &mut heap
-    };
+    let (mut stack, mut heap) = ([0.0f64; 16 * 16], Vec::new());
+    let work = scratch(&mut stack, &mut heap, 16 * n);
     let (ln_eta, rest) = work.split_at_mut(n);
     let (eta_eff, rest) = rest.split_at_mut(n);
     let (mut y, rest) = rest.split_at_mut(n);

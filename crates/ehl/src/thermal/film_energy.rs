@@ -609,14 +609,8 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 ) -> Result<(bool, usize), FilmError> {
     let nz = rule.len();
     // the points' scratch on the stack up to 16 points (as the column solve's)
-    let mut stack = [0.0f64; 4 * 16];
-    let mut heap = Vec::new();
-    let work: &mut [f64] = if nz <= 16 {
-        &mut stack[..4 * nz]
-    } else {
-        heap.resize(4 * nz, 0.0);
-        &mut heap
-    };
+    let (mut stack, mut heap) = ([0.0f64; 4 * 16], Vec::new());
+    let work = super::film::scratch(&mut stack, &mut heap, 4 * nz);
     let (start, rest) = work.split_at_mut(nz);
     let (eta, rest) = rest.split_at_mut(nz);
     let (rho, drho) = rest.split_at_mut(nz);
@@ -1588,6 +1582,20 @@ mod tests {
         }
     }
 
+    /// [`ThinningLaw`] at eta0 = 0.5 Pa s falling by 0.03 1/K (D = 6.5e-4 1/K) and 7 points.
+    fn thinning_oil() -> (ThinningLaw, Lobatto) {
+        (ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4)), Lobatto::new(7))
+    }
+
+    /// The Poiseuille flux -rho/eta h^3/12 dp/dx of [`thinning_oil`] without shear thinning
+    /// (kg/(m s)) on films `h` under gradients `dpdx`.
+    fn newtonian_poiseuille_flux(h: &[f64], dpdx: &[f64]) -> Vec<f64> {
+        h.iter()
+            .zip(dpdx)
+            .map(|(h, g)| -870.0 / 0.5 * h.powi(3) / 12.0 * g)
+            .collect()
+    }
+
     /// A flux-driven shear-thinning line (the Poiseuille flux of a Newtonian film at the line's
     /// gradient imposed, sliding at 2 m/s, the pressure-flow stress at the walls of the order
     /// of the sliding one, so that the column's gradient is a fixed point that takes
@@ -1605,8 +1613,7 @@ mod tests {
     /// re-solve) or not used.
     #[test]
     fn a_flux_driven_line_started_warm_is_where_it_was() {
-        let law = ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4));
-        let rule = Lobatto::new(7);
+        let (law, rule) = thinning_oil();
         let nx = 48;
         let h: Vec<f64> = (0..nx)
             .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
@@ -1614,9 +1621,7 @@ mod tests {
         let dpdx: Vec<f64> = (0..nx)
             .map(|i| 5e12 * (std::f64::consts::PI * i as f64 / nx as f64).sin())
             .collect();
-        let q: Vec<f64> = (0..nx)
-            .map(|i| -870.0 / 0.5 * h[i].powi(3) / 12.0 * dpdx[i])
-            .collect();
+        let q = newtonian_poiseuille_flux(&h, &dpdx);
         let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
         let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
         line.poiseuille_flux_x = Some(&q);
@@ -1682,16 +1687,13 @@ mod tests {
     /// temperatures at which the viscosity underflows).
     #[test]
     fn columns_in_parallel_are_the_columns_one_after_the_other() {
-        let law = ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4));
-        let rule = Lobatto::new(7);
+        let (law, rule) = thinning_oil();
         let nx = 96;
         let h: Vec<f64> = (0..nx)
             .map(|i| 0.4e-6 * (1.0 + (i as f64 / 40.0).powi(2)))
             .collect();
         let dpdx: Vec<f64> = (0..nx).map(|i| 3e12 * (0.1 * i as f64).sin()).collect();
-        let q: Vec<f64> = (0..nx)
-            .map(|i| -870.0 / 0.5 * h[i].powi(3) / 12.0 * dpdx[i])
-            .collect();
+        let q = newtonian_poiseuille_flux(&h, &dpdx);
         let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
         let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
         line.poiseuille_flux_x = Some(&q);
