@@ -367,8 +367,9 @@ pub struct LineOptions {
     /// see [`solve_line_from`]); false: the plain iteration throughout, for comparison
     pub linearise_heating: bool,
     /// solve the columns of the line in parallel ([`line_coefficients_from`]); [`solve_lines`]
-    /// turns it off where its lines alone keep every thread busy (nested tasks cost a 2D
-    /// contact 5 %: the thermal pit passage at 256 x 256)
+    /// turns it off where its lines alone keep every thread busy (a 2D contact: nested tasks
+    /// add no parallel work there, only their overhead; the parallel version of this loop
+    /// costs such a contact 1.5-2.5 % of CPU time as it is, BENCHMARKS.md)
     pub parallel_columns: bool,
 }
 
