@@ -44,9 +44,9 @@ use system::{
     jacobian_product, LineJacobianPreconditioner, Linear, Physics, Preconditioner, State, System,
 };
 pub use transient::{
-    solve_transient, solve_transient_observed, solve_transient_thermal, MassBalance,
-    MovingSurface, StartObserver, StepResult, StepThermal, TimeScheme, TransientEnd,
-    TransientParams, TransientProblem, DENSE_MAX,
+    solve_transient, solve_transient_observed, solve_transient_thermal, MassBalance, MovingSurface,
+    StartObserver, StepResult, StepThermal, TimeScheme, TransientEnd, TransientParams,
+    TransientProblem, DENSE_MAX,
 };
 
 /// A steady isothermal EHL problem (SI units).
@@ -220,6 +220,13 @@ struct Stats<'a> {
 /// 121 instead of 138 GMRES iterations on the finest grid (single runs: 2.9 s against 3.3-3.6 s).
 const ETA_MAX: f64 = 0.1;
 
+/// The first step's forcing term of a Newton run started next to its solution: the thermal
+/// fixed point's Reynolds solves after its first, whose factors move little. ETA_MAX there
+/// spent the first of 3 steps a solve on a 7x reduction; with 1e-2 the Newton steps of whole
+/// thermal runs fell 19 -> 17 (thesis roller 256 x 512), 19 -> 12 (the same at 256 x 128, SRR
+/// 0.3, Carreau) and 24 -> 17 (`ehl_thermal_line.toml`), 5-10 % of their time.
+const ETA_WARM: f64 = 1e-2;
+
 /// Why a Newton run (or a whole steady solve) stopped. `Display` gives the sentence written to
 /// `summary.json`'s `termination`.
 #[derive(Debug, Clone, PartialEq)]
@@ -375,10 +382,11 @@ fn newton(
     st: &mut State,
     tol: f64,
     dtau0: f64,
+    first_eta: f64,
     par: &EhlParams,
     stats: &mut Stats,
 ) -> StageEnd {
-    let mut run = NewtonRun::new(sys, st, dtau0);
+    let mut run = NewtonRun::new(sys, st, dtau0, first_eta);
     let end = loop {
         // a cancelled solve stops at once; every later stage (pseudo-time, continuation, the
         // second start) stops at its first check, so the whole solve unwinds in milliseconds
@@ -447,7 +455,7 @@ struct NewtonRun {
 }
 
 impl NewtonRun {
-    fn new(sys: &System, st: &State, dtau0: f64) -> Self {
+    fn new(sys: &System, st: &State, dtau0: f64, first_eta: f64) -> Self {
         let n = sys.n();
         let mut e_h0 = vec![0.0; n + 1];
         e_h0[n] = 1.0;
@@ -471,7 +479,7 @@ impl NewtonRun {
             // with the whole-Jacobian preconditioner of a transient line (started from the
             // predicted state, in Newton's region of fast convergence) the first step is solved as
             // tightly as the tolerance asks (the floor in `evaluate`), not to ETA_MAX
-            eta: if sys.jacobian_reuse { 0.0 } else { ETA_MAX },
+            eta: if sys.jacobian_reuse { 0.0 } else { first_eta },
             dtau: dtau0,
             shift: 0.0,
             full_step: false,
@@ -809,13 +817,34 @@ fn solve_from(
     par: &EhlParams,
     stats: &mut Stats,
 ) -> StageEnd {
+    solve_from_with(sys, st, tol, ETA_MAX, par, stats)
+}
+
+/// [`solve_from`] with the first Newton step's linear solve forced to `first_eta` (and no
+/// looser than the tolerance needs): [`ETA_WARM`] for a state already near its solution.
+fn solve_from_with(
+    sys: &mut System,
+    st: &mut State,
+    tol: f64,
+    first_eta: f64,
+    par: &EhlParams,
+    stats: &mut Stats,
+) -> StageEnd {
     let start = st.clone();
-    let e = newton(sys, st, tol, f64::INFINITY, par, stats);
+    let e = newton(sys, st, tol, f64::INFINITY, first_eta, par, stats);
     if e.converged || !par.pseudo_time_step.is_finite() {
         return e;
     }
     let mut st2 = start;
-    let e2 = newton(sys, &mut st2, tol, par.pseudo_time_step, par, stats);
+    let e2 = newton(
+        sys,
+        &mut st2,
+        tol,
+        par.pseudo_time_step,
+        ETA_MAX,
+        par,
+        stats,
+    );
     let reason = Termination::NewtonThenPseudoTransient {
         newton: Box::new(e.reason.clone()),
         pseudo_transient: Box::new(e2.reason.clone()),
