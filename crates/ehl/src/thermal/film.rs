@@ -971,7 +971,11 @@ mod tests {
         };
         let s = shear_thinning_profile(&rule, &laws, &col, 1e9, &t, &eta, &rho, short).unwrap();
         assert!(!s.converged && s.iterations == 1);
-        struct Newtonian;
+        // a Newtonian law; `named`: it says so through its closed form (LnShearLaw::Newtonian,
+        // as ThermalLaws does), else only through the default effective viscosity
+        struct Newtonian {
+            named: bool,
+        }
         impl FilmLaws for Newtonian {
             fn viscosity(&self, _: f64, _: f64) -> f64 {
                 1.0
@@ -982,33 +986,19 @@ mod tests {
             fn density_dt(&self, _: f64, _: f64) -> f64 {
                 0.0
             }
-        }
-        let s =
-            shear_thinning_profile(&rule, &Newtonian, &col, 1e9, &t, &eta, &rho, short).unwrap();
-        assert!(s.converged && s.iterations == 0);
-        // a law that names itself Newtonian (LnShearLaw::Newtonian, as ThermalLaws does) skips
-        // the residual: the same profile as the general path, from any start
-        struct Named;
-        impl FilmLaws for Named {
-            fn viscosity(&self, _: f64, _: f64) -> f64 {
-                1.0
-            }
-            fn density(&self, _: f64, _: f64) -> f64 {
-                1.0
-            }
-            fn density_dt(&self, _: f64, _: f64) -> f64 {
-                0.0
-            }
             fn ln_shear_law(&self, _: f64, _: f64) -> Option<LnShearLaw> {
-                Some(LnShearLaw::Newtonian)
+                self.named.then_some(LnShearLaw::Newtonian)
             }
         }
+        let (plain, named) = (Newtonian { named: false }, Newtonian { named: true });
+        let s = shear_thinning_profile(&rule, &plain, &col, 1e9, &t, &eta, &rho, short).unwrap();
+        assert!(s.converged && s.iterations == 0);
+        // the named law skips the residual: the same profile as the general path, from any start
         let o = ShearOptions::default();
         let fast =
-            shear_thinning_profile_from(&rule, &Named, &col, 1e9, &t, &eta, &rho, o, Some(&off))
+            shear_thinning_profile_from(&rule, &named, &col, 1e9, &t, &eta, &rho, o, Some(&off))
                 .unwrap();
-        let general =
-            shear_thinning_profile(&rule, &Newtonian, &col, 1e9, &t, &eta, &rho, o).unwrap();
+        let general = shear_thinning_profile(&rule, &plain, &col, 1e9, &t, &eta, &rho, o).unwrap();
         // (to rounding: the general path's eta_eff is exp(ln eta))
         assert_eq!((fast.iterations, general.iterations), (0, 0));
         let (a, b) = (&fast.profile, &general.profile);
