@@ -821,7 +821,8 @@ fn solve_from(
 }
 
 /// [`solve_from`] with the first Newton step's linear solve forced to `first_eta` (and, as
-/// every step's, no tighter than the tolerance needs): [`ETA_WARM`] for a state already near its solution.
+/// every step's, no tighter than the tolerance needs): [`ETA_WARM`] for a state already near
+/// its solution.
 fn solve_from_with(
     sys: &mut System,
     st: &mut State,

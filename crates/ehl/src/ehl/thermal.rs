@@ -129,13 +129,13 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// The largest thermal loading L = eta0 beta u_e^2 / k_f below which the steady thermal solver
 /// converged at every slide-to-roll ratio measured (docs/thermal.md, "Left open"). On the thesis
 /// Table 3.7 line with the Roelands-Carreau example oil (`ehl_thermal_line.toml`, 512 cells,
-/// map of 2026-11-28) it converged in pure rolling and at SRR 0.05 up to L = 22 (from L = 6.8
-/// with the retry at 11 points across the film), at SRR 0.3 up to 13, and at SRR 1 up to 3.2
-/// but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin. The thesis pit case
-/// on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at 256 x 256 since the
-/// film carries heat along y (23 outer iterations; without the side flow it did not settle in
-/// 80). A run, steady or transient, that fails above it says so in its reason
-/// ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
+/// map of 2026-11-28) it converged in pure rolling and at SRR 0.05 up to L = 22 (from L = 3.2
+/// or 6.8 with the retry at 11 points across the film), at SRR 0.3 up to 13, and at SRR 1 up
+/// to 3.2 but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin. The
+/// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
+/// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
+/// it did not settle in 80). A run, steady or transient, that fails above it says so in its
+/// reason ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
 pub const CONVERGED_THERMAL_LOADING: f64 = 2.5;
 
 /// The thermal solution: the EHL fields (viscosity and density at the mid-film temperature),
@@ -436,9 +436,9 @@ pub(crate) fn relax_factors(
 /// The Reynolds tolerance of an outer iteration whose factors' residual (max |ln G - ln F|) is
 /// `residual`: a pressure solved far tighter than its factors are known is work the next
 /// temperature update throws away, so [`LOOSE_REYNOLDS`] x `residual`, at most
-/// [`LOOSE_REYNOLDS_MAX`], never tighter than the case's `tol`, and `tol` itself once the residual is
-/// within 10 times its stop `factor_tol`: the solve before the fixed point stops is then to
-/// the case's tolerance (the driver stops only after such a solve).
+/// [`LOOSE_REYNOLDS_MAX`], never tighter than the case's `tol`, and `tol` itself once the
+/// residual is within 10 times its stop `factor_tol`: the solve before the fixed point stops
+/// is then to the case's tolerance (the driver stops only after such a solve).
 fn reynolds_tolerance(tol: f64, residual: f64, factor_tol: f64) -> f64 {
     if residual <= 10.0 * factor_tol {
         tol

@@ -977,9 +977,18 @@ fn solve_ehl(
         hertz_pressure: hertz.ph,
         initial_pressure: dry_start,
     };
+    // a thermal run's isothermal solution is only the seed of its first outer iteration, whose
+    // own Reynolds solve is no tighter than 1e-3 (thermal::START_TOLERANCE)
+    let start_params = match &case.thermal {
+        Some(_) => EhlParams {
+            tolerance: params.tolerance.max(thermal::START_TOLERANCE),
+            ..params.clone()
+        },
+        None => params.clone(),
+    };
     let mut r = crate::ehl::solve_steady_with_fallback_observed(
         &problem,
-        &params,
+        &start_params,
         // (the fraction unknown: the first start may have shown more than any fixed figure)
         &|| progress.report(f64::NAN, "EHL, second start"),
         &mut observer,
