@@ -472,9 +472,9 @@ const LOOSE_REYNOLDS_MAX: f64 = 1e-3;
 /// dT moves ln of the factors by about beta dT (beta = -d ln eta / dT, 0.03-0.1 per K for a
 /// mineral oil), so 0.1 K per unit residual keeps the film's own error at a few per cent of
 /// what the factors still have to move. Measured 2026-11-28 (the thesis roller 256 x 512 with
-/// `[thermal]` at SRR 0.3, Carreau): 17.4 -> 14.4 s, the same 10 outer iterations; 1 and 0.3
-/// per unit were faster still but lost the Table 3.7 line at SRR 0.3 and L = 13 from the
-/// thermal map (14 of 20 settled instead of 15); 0.1 keeps the map's 15.
+/// `[thermal]` at SRR 0.3, Carreau): 17.4 -> 14.1 s (medians of 3), the same 10 outer
+/// iterations; 1 and 0.3 per unit were faster still but lost the Table 3.7 line at SRR 0.3 and
+/// L = 13 from the thermal map (14 of 20 settled instead of 15); 0.1 keeps the map's 15.
 const LOOSE_FILM: f64 = 0.1;
 /// The loosest film stop (K): the first update, from the inlet temperature, whose factors'
 /// residual is not known yet (1.3 -> 0.7 s on the pure-rolling roller at 256 x 512).
