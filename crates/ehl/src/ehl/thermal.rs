@@ -9,7 +9,8 @@
 //! 2. from the temperature across the film it forms the generalized Reynolds coefficients
 //!    (Yang & Wen 1990) as per-cell factors on the isothermal ones
 //!    (`super::system::ThermalFactors`); the first iteration takes them whole, the later ones
-//!    Anderson-mix them with the last iterates ([`ThermalParams::anderson`]);
+//!    Anderson-mix them with the last iterates ([`ThermalParams::anderson`]), damped unless the
+//!    coupling has shown itself weak (`mixing_parameter`);
 //! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
 //!    from the last solution (from the second outer iteration on, its first linear solve to
 //!    [`super::ETA_WARM`]), the factors frozen, to a tolerance no tighter than the factors are
@@ -59,7 +60,8 @@ pub struct ThermalParams {
     /// most outer iterations
     pub max_outer: usize,
     /// under-relaxation of the Reynolds factors from the second outer iteration on (1: none):
-    /// the mixing parameter of the Anderson steps; a plain relaxed iteration (`anderson` = 0)
+    /// the mixing parameter of the Anderson steps (1 instead where the last two estimates of
+    /// the coupling's contraction were at most 0.2, see `mixing_parameter`); a plain relaxed iteration (`anderson` = 0)
     /// halves it, down to `min_relaxation`, whenever the film-temperature change grows, and so
     /// does a Newton solve that needed a shorter step
     pub relaxation: f64,
@@ -250,6 +252,10 @@ fn run(
     // stopped on its settled test (not on running out of outer iterations after a solve that
     // no update has checked)
     let (mut tight, mut stopped) = (false, false);
+    // the factors of the last outer iteration and the factors of the temperatures they gave,
+    // and the map's contraction then (see map_contraction)
+    let mut last_pair: Option<(ThermalFactors, ThermalFactors)> = None;
+    let mut prev_contraction: Option<f64> = None;
     while outer < thermal.max_outer {
         if crate::run::cancel::requested() {
             failure = Some(Termination::Cancelled);
@@ -309,6 +315,13 @@ fn run(
         h_prev.copy_from_slice(&h_si);
         contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
         residual = factor_residual(grid, &h_si, &factors, &fresh);
+        // how strongly the temperatures answer the factors, from this outer iteration and the
+        // last (see mixing_parameter)
+        let contraction = last_pair
+            .as_ref()
+            .and_then(|(f, g)| map_contraction(grid, &h_si, (f, g), (&factors, &fresh)));
+        last_pair = Some((factors.clone(), fresh.clone()));
+        let last_contraction = std::mem::replace(&mut prev_contraction, contraction);
         let settled = estimate <= thermal.tolerance_k
             && residual <= thermal.factor_tolerance
             && contact.inner_residual() <= thermal.tolerance_k
@@ -345,7 +358,12 @@ fn run(
                     best_residual = residual;
                 }
             }
-            mix_factors(&mut factors, &fresh, &mut mixing, thermal.relaxation);
+            mix_factors(
+                &mut factors,
+                &fresh,
+                &mut mixing,
+                mixing_parameter(thermal, contraction, last_contraction),
+            );
         }
         sys.thermal = Some(factors.clone());
         let tol = reynolds_tolerance(params.tolerance, residual, thermal.factor_tolerance);
@@ -480,6 +498,72 @@ const LOOSE_FILM: f64 = 0.1;
 /// residual is not known yet (1.3 -> 0.7 s on the pure-rolling roller at 256 x 512).
 const LOOSE_FILM_MAX: f64 = 0.1;
 
+/// The mixing parameter of an Anderson step of the outer iteration: 1 (undamped) where the
+/// last two estimates of the outer map's local contraction ([`map_contraction`]) are both at
+/// most [`WEAK_COUPLING`], else [`ThermalParams::relaxation`].
+///
+/// Where the temperatures barely answer the factors (a weak coupling: pure rolling, a fast
+/// body), G(F) hardly moves once the first outer iteration has taken the isothermal pressure to
+/// a thermal one, and a damped step only halves the distance to it: the damping, not the
+/// coupling, then sets the pace. The thesis roller 256 x 512 in pure rolling measured a
+/// contraction of 0.21, 0.043, 0.036 over its first outer iterations and took 8 of them with
+/// the damping throughout. One estimate is along one direction of the factors only: with one
+/// alone (0.2), the Table 3.7 line at SRR 0.3 and U = 3.0e-10 (a strong coupling, the
+/// estimates 0.17 at first and 0.4-1.9 after) took 72 outer iterations instead of 52; with
+/// two in a row it took its 52. With 0.35 for one, the thermal map lost two cases.
+fn mixing_parameter(
+    thermal: &ThermalParams,
+    contraction: Option<f64>,
+    last_contraction: Option<f64>,
+) -> f64 {
+    match (contraction, last_contraction) {
+        (Some(c), Some(l)) if c.max(l) <= WEAK_COUPLING => 1.0,
+        _ => thermal.relaxation,
+    }
+}
+
+/// The largest local contraction of the outer map at which its Anderson steps are undamped
+/// ([`mixing_parameter`]).
+const WEAK_COUPLING: f64 = 0.2;
+
+/// The local contraction of the outer map, ||ln G(F_k) - ln G(F_(k-1))|| / ||ln F_k -
+/// ln F_(k-1)|| (2-norms over the flow and Couette factors where the film `h` is at most
+/// [`CONVERGED_FILM_RATIO`] times its row's thinnest), from the last pair (F, G(F)) and this
+/// one; None when the factors did not move.
+fn map_contraction(
+    grid: crate::grid::Grid,
+    h: &[f64],
+    last: (&ThermalFactors, &ThermalFactors),
+    now: (&ThermalFactors, &ThermalFactors),
+) -> Option<f64> {
+    let d = |a: &[f64], b: &[f64], k: usize| (ln(a[k]) - ln(b[k])).powi(2);
+    let (mut df, mut dg) = (0.0f64, 0.0f64);
+    for_converged_cells(grid, h, |k| {
+        df += d(&now.0.flow, &last.0.flow, k) + d(&now.0.couette, &last.0.couette, k);
+        dg += d(&now.1.flow, &last.1.flow, k) + d(&now.1.couette, &last.1.couette, k);
+    });
+    (df > 0.0).then(|| (dg / df).sqrt())
+}
+
+/// Calls `f` with each cell where the film `h` (m; infinite where no material) is at most
+/// [`CONVERGED_FILM_RATIO`] times its row's thinnest: the region the fixed point's tests are
+/// taken over.
+fn for_converged_cells(grid: crate::grid::Grid, h: &[f64], mut f: impl FnMut(usize)) {
+    for j in 0..grid.ny {
+        let row = j * grid.nx..(j + 1) * grid.nx;
+        let thin = h[row.clone()]
+            .iter()
+            .cloned()
+            .filter(|h| h.is_finite() && *h > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        for k in row {
+            if h[k].is_finite() && h[k] <= CONVERGED_FILM_RATIO * thin {
+                f(k);
+            }
+        }
+    }
+}
+
 /// `factors` = `base` + `w` (`fresh` - `base`).
 fn relax(factors: &mut ThermalFactors, base: &ThermalFactors, fresh: &ThermalFactors, w: f64) {
     for k in 0..factors.flow.len() {
@@ -537,21 +621,11 @@ fn factor_residual(
     fresh: &ThermalFactors,
 ) -> f64 {
     let mut r = 0.0f64;
-    for j in 0..grid.ny {
-        let row = j * grid.nx..(j + 1) * grid.nx;
-        let thin = h[row.clone()]
-            .iter()
-            .cloned()
-            .filter(|h| h.is_finite() && *h > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        for k in row {
-            if h[k].is_finite() && h[k] <= CONVERGED_FILM_RATIO * thin {
-                r = r
-                    .max((ln(fresh.flow[k]) - ln(factors.flow[k])).abs())
-                    .max((ln(fresh.couette[k]) - ln(factors.couette[k])).abs());
-            }
-        }
-    }
+    for_converged_cells(grid, h, |k| {
+        r = r
+            .max((ln(fresh.flow[k]) - ln(factors.flow[k])).abs())
+            .max((ln(fresh.couette[k]) - ln(factors.couette[k])).abs());
+    });
     r
 }
 
@@ -576,5 +650,70 @@ pub(crate) fn film_change(now: &[f64], before: &[f64]) -> f64 {
         d / thin
     } else {
         0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+
+    fn factors(flow: &[f64], couette: &[f64]) -> ThermalFactors {
+        ThermalFactors {
+            flow: flow.to_vec(),
+            couette: couette.to_vec(),
+        }
+    }
+
+    #[test]
+    fn map_contraction_is_the_slope_of_a_linear_map() {
+        // G(F) = exp(g + c (ln F - f)) per cell: a map of contraction c in logarithms, whose
+        // secant estimate from two iterates is c exactly, whatever the iterates. The thick
+        // inlet cell (film 20 times the row's thinnest) is left out: there G moves 10 times
+        // as much, and counted it would give ~10.
+        let grid = Grid::new(4, 2, 0.0, 4.0, 0.0, 2.0);
+        let h = [1.0, 1.0, 1.5, 20.0, 2.0, 1.0, 1.2, f64::INFINITY];
+        for c in [0.03, 0.2, 0.9, 1.7] {
+            let map = |f: &ThermalFactors| {
+                let g = |v: &[f64], s: f64| -> Vec<f64> {
+                    v.iter()
+                        .enumerate()
+                        .map(|(k, &x)| {
+                            let slope = if k == 3 { 10.0 * c } else { c };
+                            (0.1 * s + slope * (x.ln() + 0.02 * k as f64)).exp()
+                        })
+                        .collect()
+                };
+                factors(&g(&f.flow, 1.0), &g(&f.couette, -1.0))
+            };
+            let f1 = factors(
+                &[1.0, 0.9, 1.1, 1.0, 0.8, 1.2, 1.0, 1.0],
+                &[1.0, 1.0, 0.97, 1.0, 1.02, 1.0, 0.99, 1.0],
+            );
+            let f2 = factors(
+                &[0.95, 0.93, 1.0, 1.3, 0.85, 1.1, 1.02, 1.0],
+                &[0.99, 1.01, 0.98, 0.9, 1.0, 1.0, 1.0, 1.0],
+            );
+            let (g1, g2) = (map(&f1), map(&f2));
+            let est = map_contraction(grid, &h, (&f1, &g1), (&f2, &g2)).unwrap();
+            assert!((est - c).abs() < 1e-12 * c, "c {c}: estimated {est}");
+            // and a map that did not move its factors gives no estimate
+            assert!(map_contraction(grid, &h, (&f1, &g1), (&f1, &g2)).is_none());
+        }
+    }
+
+    #[test]
+    fn only_two_weak_contractions_in_a_row_undamp_the_mixing() {
+        let p = ThermalParams::default();
+        let w = p.relaxation;
+        assert_eq!(mixing_parameter(&p, Some(0.05), Some(0.1)), 1.0);
+        assert_eq!(
+            mixing_parameter(&p, Some(WEAK_COUPLING), Some(WEAK_COUPLING)),
+            1.0
+        );
+        assert_eq!(mixing_parameter(&p, Some(0.05), Some(0.3)), w);
+        assert_eq!(mixing_parameter(&p, Some(0.3), Some(0.05)), w);
+        assert_eq!(mixing_parameter(&p, Some(0.05), None), w);
+        assert_eq!(mixing_parameter(&p, None, None), w);
     }
 }
