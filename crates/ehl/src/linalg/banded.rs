@@ -146,14 +146,21 @@ impl Banded {
                 }
             }
             let pivot = w[self.at(k, k)];
+            // row k's entries right of the diagonal, k + 1 ..= jend, are contiguous, and so are
+            // row r's (r > k) further on: one split gives both as slices, an axpy the compiler
+            // vectorises (the indexed loop it did not: the thesis roller with [thermal], where
+            // film and Reynolds line factorisations were 8 % of the samples)
+            let len = jend - k;
+            let from = self.at(k, k + 1);
             for r in k + 1..=last {
                 let irk = self.at(r, k);
                 let l = w[irk] / pivot;
                 w[irk] = l;
-                if l != 0.0 {
-                    for j in k + 1..=jend {
-                        let (x, y) = (self.at(r, j), self.at(k, j));
-                        w[x] -= l * w[y];
+                if l != 0.0 && len > 0 {
+                    let (head, tail) = w.split_at_mut(irk + 1);
+                    let pivot_row = &head[from..from + len];
+                    for (x, y) in tail[..len].iter_mut().zip(pivot_row) {
+                        *x -= l * y;
                     }
                 }
             }
