@@ -305,18 +305,15 @@ pub(crate) fn cell_coefficient(
     k: f64,
     tol: f64,
 ) -> f64 {
-    far_cell_coefficient(x, y, a, b, lambda, sign, k)
-        .unwrap_or_else(|| polar_cell_coefficient(x, y, a, b, lambda, sign, k, tol))
+    far_cell_coefficient((x, y), (a, b), lambda, sign, k)
+        .unwrap_or_else(|| polar_cell_coefficient((x, y), (a, b), lambda, sign, k, tol))
 }
 
 /// [`cell_coefficient`] as the exact integral of the 1/r part plus the polar integral of the
 /// rest, to `tol` of the 1/r part: any cell.
-#[allow(clippy::too_many_arguments)]
 fn polar_cell_coefficient(
-    x: f64,
-    y: f64,
-    a: f64,
-    b: f64,
+    (x, y): (f64, f64),
+    (a, b): (f64, f64),
     lambda: f64,
     sign: f64,
     k: f64,
@@ -349,13 +346,10 @@ fn polar_cell_coefficient(
 /// Most of a table is far cells: the thesis roller's at 256 x 512 (261 632 coefficients,
 /// lambda dx = 1.1) took 0.46 s by the polar integral alone, 0.12 s with this rule (2 cores),
 /// the same surface temperatures to 1e-12 K.
-#[allow(clippy::too_many_arguments)]
 #[inline]
 fn far_cell_coefficient(
-    x: f64,
-    y: f64,
-    a: f64,
-    b: f64,
+    (x, y): (f64, f64),
+    (a, b): (f64, f64),
     lambda: f64,
     sign: f64,
     k: f64,
@@ -830,11 +824,13 @@ mod tests {
                     for di in -40i32..=40 {
                         for dj in [-40i32, -13, -7, -3, -1, 0, 2, 5, 9, 21, 40] {
                             let (x, y) = (di as f64 * dx, dj as f64 * dy);
-                            let Some(c) = far_cell_coefficient(x, y, a, b, lambda, sign, k) else {
+                            let Some(c) = far_cell_coefficient((x, y), (a, b), lambda, sign, k)
+                            else {
                                 continue;
                             };
                             taken += 1;
-                            let p = polar_cell_coefficient(x, y, a, b, lambda, sign, k, TOLERANCE);
+                            let p =
+                                polar_cell_coefficient((x, y), (a, b), lambda, sign, k, TOLERANCE);
                             // the 1/r part, to which the polar integral is accurate
                             let singular = 4.0 * a * b / (2.0 * PI * k * x.hypot(y));
                             let err = (c - p).abs() / p.abs().max(singular);
