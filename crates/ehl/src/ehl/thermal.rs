@@ -61,9 +61,9 @@ pub struct ThermalParams {
     pub max_outer: usize,
     /// under-relaxation of the Reynolds factors from the second outer iteration on (1: none):
     /// the mixing parameter of the Anderson steps (1 instead where the last two estimates of
-    /// the coupling's contraction were at most 0.2, see `mixing_parameter`); a plain relaxed iteration (`anderson` = 0)
-    /// halves it, down to `min_relaxation`, whenever the film-temperature change grows, and so
-    /// does a Newton solve that needed a shorter step
+    /// the coupling's contraction were at most 0.2, see `mixing_parameter`); a plain relaxed
+    /// iteration (`anderson` = 0) halves it, down to `min_relaxation`, whenever the
+    /// film-temperature change grows, and so does a Newton solve that needed a shorter step
     pub relaxation: f64,
     /// the smallest relaxation the halving reaches
     pub min_relaxation: f64,
@@ -72,7 +72,8 @@ pub struct ThermalParams {
     /// Anderson mixing of the outer iteration (depth of its history; 0: the plain relaxed
     /// iteration): from the second outer iteration on, the next Reynolds factors combine the
     /// last `anderson` + 1 iterates (on the factors' logarithms, so that they stay positive),
-    /// with `relaxation` as the mixing parameter (Walker & Ni 2011). Depth 8 settled every
+    /// with `relaxation` as the mixing parameter (1 where the coupling has shown itself weak,
+    /// `mixing_parameter`; Walker & Ni 2011). Depth 8 settled every
     /// case of the measured map that depth 5 settled, and the Table 3.7 line at SRR 0.3 and
     /// L = 6.8 and 9.5 besides (33 and 48 outer iterations; depth 5 stalled at a factors'
     /// residual of 2e-4; docs/thermal.md, "Left open")
@@ -321,7 +322,7 @@ fn run(
             .as_ref()
             .and_then(|(f, g)| map_contraction(grid, &h_si, (f, g), (&factors, &fresh)));
         last_pair = Some((factors.clone(), fresh.clone()));
-        let last_contraction = std::mem::replace(&mut prev_contraction, contraction);
+        let mut last_contraction = std::mem::replace(&mut prev_contraction, contraction);
         let settled = estimate <= thermal.tolerance_k
             && residual <= thermal.factor_tolerance
             && contact.inner_residual() <= thermal.tolerance_k
@@ -340,7 +341,10 @@ fn run(
             relax(&mut factors, &base, &fresh, step);
         } else {
             if !change.is_finite() {
-                // a cell solved for the first time: the history is of another problem
+                // a cell solved for the first time: the history is of another problem (the
+                // contraction's estimates are kept: taken over the cells of both iterations,
+                // they still measure how the temperatures answer the factors; the Carreau
+                // roller at SRR 0.3 solves new cells until its fourth outer iteration)
                 mixing.clear();
             }
             // a history that stopped reducing the residual is dropped (a restart, the usual
@@ -356,6 +360,9 @@ fn run(
                     mixing.clear();
                     stuck = 0;
                     best_residual = residual;
+                    // and a stalled iteration is not a weak coupling: two new estimates first
+                    prev_contraction = None;
+                    last_contraction = None;
                 }
             }
             mix_factors(
@@ -386,9 +393,11 @@ fn run(
             sys.eval(&mut st);
             e = solve_from_with(&mut sys, &mut st, tol, ETA_MAX, params, &mut stats);
             if e.converged {
-                // the iterations after it keep to the step that worked
+                // the iterations after it keep to the step that worked (undamped steps
+                // only after two new estimates of a weak coupling)
                 w = w.min(cut.max(thermal.min_relaxation.min(thermal.relaxation)));
                 mixing.clear();
+                prev_contraction = None;
             }
         }
         let ok = e.converged;
@@ -517,7 +526,8 @@ fn mixing_parameter(
     last_contraction: Option<f64>,
 ) -> f64 {
     match (contraction, last_contraction) {
-        (Some(c), Some(l)) if c.max(l) <= WEAK_COUPLING => 1.0,
+        // (a NaN estimate is no weak coupling)
+        (Some(c), Some(l)) if c <= WEAK_COUPLING && l <= WEAK_COUPLING => 1.0,
         _ => thermal.relaxation,
     }
 }
@@ -715,5 +725,7 @@ mod tests {
         assert_eq!(mixing_parameter(&p, Some(0.3), Some(0.05)), w);
         assert_eq!(mixing_parameter(&p, Some(0.05), None), w);
         assert_eq!(mixing_parameter(&p, None, None), w);
+        assert_eq!(mixing_parameter(&p, Some(f64::NAN), Some(0.05)), w);
+        assert_eq!(mixing_parameter(&p, Some(0.05), Some(f64::NAN)), w);
     }
 }

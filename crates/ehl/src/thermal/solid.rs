@@ -43,7 +43,9 @@
 //!   pieces split at the cell corners and geometrically graded towards the wake direction
 //!   (theta = 0 for U > 0), where the integrand varies over an angle sqrt(2 / (lambda rho)).
 //!   Accurate to ~1e-10 of the 1/r part of each coefficient (a test compares with brute-force
-//!   tensor quadrature).
+//!   tensor quadrature). Cells far from the target (most of a table) are integrated instead by
+//!   an 8 x 8 Gauss product rule on the whole kernel, where its error bound is below 1e-12
+//!   (`far_cell_coefficient`).
 //! * line: with K0(z) = int_0^inf exp(-z cosh t) dt, the integral over the source cell of
 //!   exp(s lambda u) K0(lambda u) (u = |x| > 0 on each side of the source) is closed form in u,
 //!   leaving a smooth integral over t, done by adaptive Gauss-Legendre on a graded partition of
@@ -294,6 +296,8 @@ fn coefficient_table(grid: &Grid, props: &SolidThermal, speed: f64, tol: f64) ->
 
 /// 3D coefficient (K m^2/W): the integral of G over the rectangle |x'| <= a, |y'| <= b seen from
 /// the point (x, y) (offset target - source centre); `lambda` = |U| / (2 kappa), `sign` = sign U.
+/// `tol` is the polar integral's, for near cells; far cells take the Gauss product rule, to its
+/// own bound (`far_cell_coefficient`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn cell_coefficient(
     x: f64,
@@ -339,9 +343,11 @@ fn polar_cell_coefficient(
 /// smooth over it, and the exponent varying by at most [`FAR_EXPONENT`] over the cell's
 /// half-width in each direction (its slope is at most 2 lambda along x, lambda along y). The
 /// Gauss error bound for an exponential of half-range alpha, 2^17 (8!)^4 / (17 (16!)^3)
-/// alpha^16 e^alpha ~ 2.5e-18 alpha^16 e^alpha, is 4e-11 at alpha = 2, the 1/|w| factor's
+/// alpha^16 e^alpha ~ 2.2e-18 alpha^16 e^alpha, is 1.1e-12 at alpha = 2, the 1/|w| factor's
 /// ~ (2 FAR_CELLS)^-16 below it; test `far_cells_by_gauss_match_the_polar_integral` measures
-/// the rule against the adaptive one. None where the rule does not apply.
+/// the rule against the adaptive one. The lengths are taken in units of the larger half-width
+/// (squares of lengths in metres would underflow below 1e-154 m). None where the rule does not
+/// apply.
 ///
 /// Most of a table is far cells: the thesis roller's at 256 x 512 (261 632 coefficients,
 /// lambda dx = 1.1) took 0.46 s by the polar integral alone, 0.12 s with this rule (2 cores),
@@ -360,19 +366,21 @@ fn far_cell_coefficient(
         return None;
     }
     let rule = gauss_rule();
+    // in units of `half`: u = w / half, the exponent lambda half (|u| - sign u_x), 1/|w| =
+    // 1/(half |u|); (sqrt, not hypot: a third of the time, and |u| is of order 1 to 1e5 here)
+    let (l, ua, ub, ux, uy) = (lambda * half, a / half, b / half, x / half, y / half);
     let mut total = 0.0;
     for (xi, wi) in rule.nodes.iter().zip(&rule.weights) {
-        let wx = x - a * xi;
+        let wx = ux - ua * xi;
         let mut inner = 0.0;
         for (eta, wj) in rule.nodes.iter().zip(&rule.weights) {
-            let wy = y - b * eta;
-            // (not hypot: a third of the time, and these lengths neither over- nor underflow)
+            let wy = uy - ub * eta;
             let r = (wx * wx + wy * wy).sqrt();
-            inner += wj * (-lambda * (r - sign * wx)).exp() / r;
+            inner += wj * (-l * (r - sign * wx)).exp() / r;
         }
         total += wi * inner;
     }
-    Some(total * a * b / (2.0 * PI * k))
+    Some(total * ua * ub * half / (2.0 * PI * k))
 }
 
 /// The least distance of a cell's centre from the target, in the cell's larger half-widths,
@@ -808,18 +816,20 @@ mod tests {
 
     #[test]
     fn far_cells_by_gauss_match_the_polar_integral() {
-        // Every cell the product rule takes, over cell Peclet numbers up to its limit (the
-        // larger ones listed are left to the polar integral), both directions, square and elongated cells, out to 40 cells: within 1e-10
-        // of the coefficient, or of its 1/r part where the coefficient is smaller (upstream,
+        // Every cell the product rule takes, a body at rest and cell Peclet numbers up to its
+        // limits along x and y (the larger ones listed are left to the polar integral), both
+        // directions, square and elongated cells, out to 40 cells: within 1e-11 of the
+        // coefficient, or of its 1/r part where the coefficient is smaller (upstream,
         // exp(-2 lambda |x|) of it: the polar integral is accurate to 1e-12 of the 1/r part,
-        // not of what is left). The Gauss error bound (far_cell_coefficient) is 4e-11 at the
+        // not of what is left). The Gauss error bound (far_cell_coefficient) is 1.1e-12 at the
         // limit, and conservative: with the limit lifted to 30 the worst cell was 7e-12; with
-        // cells from 2 half-widths away the test fails (2e-8).
+        // cells from 2 half-widths away the test fails (2e-8). Then the same cells at lengths
+        // of 1e-200 m and 1e200 m (the rule works in units of the half-width).
         let k = 1.0;
         let (mut worst, mut taken) = (0.0f64, 0usize);
         for &(dx, dy) in &[(1.0, 1.0), (1.0, 0.3), (0.4, 1.0)] {
             let (a, b) = (0.5 * dx, 0.5 * dy);
-            for &lambda in &[0.01, 0.3, 1.0, 1.9, 2.0, 3.0, 6.0, 12.0] {
+            for &lambda in &[0.0, 0.01, 0.3, 1.0, 1.9, 2.0, 3.0, 4.0, 6.0, 12.0] {
                 for &sign in &[1.0, -1.0] {
                     for di in -40i32..=40 {
                         for dj in [-40i32, -13, -7, -3, -1, 0, 2, 5, 9, 21, 40] {
@@ -836,9 +846,25 @@ mod tests {
                             let err = (c - p).abs() / p.abs().max(singular);
                             worst = worst.max(err);
                             assert!(
-                                err < 1e-10,
+                                err < 1e-11,
                                 "dx {dx} dy {dy} lambda {lambda} sign {sign} ({di},{dj}): {c} vs {p}: {err:e}"
                             );
+                            // the same cell scaled by s: lengths by s, lambda by 1/s, the
+                            // coefficient (K m^2/W, an area over a length) by s
+                            for scale in [1e-200, 1e200] {
+                                let sc = far_cell_coefficient(
+                                    (x * scale, y * scale),
+                                    (a * scale, b * scale),
+                                    lambda / scale,
+                                    sign,
+                                    k,
+                                )
+                                .expect("the same cell, scaled");
+                                assert!(
+                                    (sc / scale / c - 1.0).abs() < 1e-12,
+                                    "scale {scale}: {sc} vs {c}"
+                                );
+                            }
                         }
                     }
                 }
@@ -853,7 +879,8 @@ mod tests {
     fn coefficients_match_brute_force_quadrature() {
         // The brute force converges geometrically with the number of sub-cells m (its integrand
         // is smooth on each sub-cell); the m = 32 -> 64 change shows it has converged to well
-        // below 1e-9 of C(0,0). The polar/adaptive coefficient must agree with it to 1e-8 of
+        // below 1e-9 of C(0,0). The coefficient (polar/adaptive, or the Gauss rule for the
+        // far cells (10, 0) and (10, 1) where it applies) must agree with it to 1e-8 of
         // C(0, 0) for cell Peclet numbers lambda dx from 0.05 to 50 (the high-Pe cells are 25
         // decay lengths across), both directions, square and elongated cells.
         let k = 1.0;
