@@ -72,11 +72,13 @@ fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureField
             .map(|x| x - t.inlet)
             .collect()
     };
+    // (the maximum across z, wider and drawn first, shows on both sides of the mid-film line
+    // where the two coincide: the hottest point of a symmetric film is its middle)
     let series = [
-        ("film, maximum across z", row(&t.max_film), RED),
-        ("film, mid-film", row(&t.mid_film), MAGENTA),
-        ("surface of body 1 (z = 0)", row(&t.surface_1), BLUE),
-        ("surface of body 2 (z = h)", row(&t.surface_2), GREEN),
+        ("film, maximum across z", row(&t.max_film), RED, 5),
+        ("film, mid-film", row(&t.mid_film), MAGENTA, 2),
+        ("surface of body 1 (z = 0)", row(&t.surface_1), BLUE, 2),
+        ("surface of body 2 (z = h)", row(&t.surface_2), GREEN, 2),
     ];
     let finite_max = |v: &[f64]| {
         v.iter()
@@ -194,7 +196,7 @@ fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureField
             .label_style(text_style(15.0, BLACK))
             .axis_desc_style(text_style(17.0, BLACK))
             .draw()?;
-        for (name, v, color) in &series {
+        for (name, v, color, width) in &series {
             let pts: Vec<(f64, f64)> = xs
                 .iter()
                 .zip(v)
@@ -204,7 +206,7 @@ fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureField
             chart
                 .draw_series(LineSeries::new(
                     pts,
-                    ShapeStyle::from(color).stroke_width(2),
+                    ShapeStyle::from(color).stroke_width(*width),
                 ))?
                 .label(*name)
                 .legend(move |(x, y)| {
