@@ -314,7 +314,12 @@ fn main() -> ExitCode {
     // a memory limit that cannot be read was ignored without a word (a scan: "abc", "-5")
     if let Ok(v) = std::env::var(ehl::run::MEMORY_LIMIT_ENV) {
         // (set but empty counts as unset, as in the library)
-        if !v.trim().is_empty() && !v.trim().parse::<f64>().is_ok_and(|b| b > 0.0 && b.is_finite()) {
+        if !v.trim().is_empty()
+            && !v
+                .trim()
+                .parse::<f64>()
+                .is_ok_and(|b| b > 0.0 && b.is_finite())
+        {
             io::err(&format!(
                 "error: {} = {v:?}: must be a positive number of bytes, e.g. 8e9",
                 ehl::run::MEMORY_LIMIT_ENV

@@ -594,7 +594,12 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode> {
                     let solved = ehl::output::OutputLock::acquire(&folder)
                         .map_err(anyhow::Error::from)
                         .and_then(|lock| {
-                            let s = crate::solve_and_write(&lock, &cases[i], &ehl::run::Silent, &|| {})?;
+                            let s = crate::solve_and_write(
+                                &lock,
+                                &cases[i],
+                                &ehl::run::Silent,
+                                &|| {},
+                            )?;
                             Ok(s.summary.converged)
                         });
                     match solved {

@@ -176,7 +176,11 @@ fn sigterm_removes_what_the_run_had_started() {
 #[test]
 fn sigterm_during_a_streamed_transient_run_leaves_nothing() {
     let text = std::fs::read_to_string(examples().join("ehl_transient_line_groove.toml")).unwrap();
-    let w = Work::new(&edit(&text, "travel =", "travel = { from = -1.2e-3, to = 1.0e-3, steps = 100000 }"));
+    let w = Work::new(&edit(
+        &text,
+        "travel =",
+        "travel = { from = -1.2e-3, to = 1.0e-3, steps = 100000 }",
+    ));
     let (mut child, o, e) = spawn_run(&w);
     // wait until many frames have been streamed (`.vtr` files in the temporary folder): the
     // solver keeps writing new ones while the signal handler empties the folder, which must
@@ -325,7 +329,11 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
 fn a_streamed_transient_run_writes_into_out_dot() {
     let text = std::fs::read_to_string(examples().join("ehl_transient_line_groove.toml")).unwrap();
     let w = Work::new(&edit(
-        &edit(&text, "travel =", "travel = { from = -1.2e-3, to = 1.0e-3, steps = 20 }"),
+        &edit(
+            &text,
+            "travel =",
+            "travel = { from = -1.2e-3, to = 1.0e-3, steps = 20 }",
+        ),
         "nx =",
         "nx = 128",
     ));
@@ -336,7 +344,12 @@ fn a_streamed_transient_run_writes_into_out_dot() {
         .current_dir(w.file("res"))
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(w.file("res/timeline.csv").is_file() && w.file("res/frames.npz").is_file());
     assert_eq!(names(w.path()), ["case.toml", "res"]);
 }

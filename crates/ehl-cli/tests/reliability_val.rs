@@ -33,6 +33,9 @@ fn a_case_over_the_memory_limit_is_refused_naming_the_grid_key() {
             .unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{bad}: {err}");
-        assert!(err.contains("EHL_MEMORY_LIMIT") && err.contains("positive number of bytes"), "{err}");
+        assert!(
+            err.contains("EHL_MEMORY_LIMIT") && err.contains("positive number of bytes"),
+            "{err}"
+        );
     }
 }

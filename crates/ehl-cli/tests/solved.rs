@@ -63,7 +63,10 @@ fn sweep_skips_finished_points_and_rebuilds_the_csv() {
     assert_eq!(rows[1][col("iterations")], "12");
     assert_eq!(rows[1][col("approach_m")], "3.5e-6");
     // the stress and fatigue figures are columns too (a scan found them missing)
-    assert_eq!(rows[1][col("max_von_mises_pa")].parse::<f64>().unwrap(), 7.1e8);
+    assert_eq!(
+        rows[1][col("max_von_mises_pa")].parse::<f64>().unwrap(),
+        7.1e8
+    );
     assert_eq!(rows[1][col("life_ratio")], "0.97");
     assert_eq!(
         rows[1][col("central_film_m")],

@@ -582,7 +582,15 @@ fn bad_transient_input_exits_1_naming_the_key() {
 #[test]
 fn a_transient_sweep_writes_each_passage() {
     let w = Work::new(&groove_text());
-    let mut args = vec!["sweep", "case.toml", "--quiet", "--out", "study", "--vary", "motion.slide_to_roll=0:0.5:2"];
+    let mut args = vec![
+        "sweep",
+        "case.toml",
+        "--quiet",
+        "--out",
+        "study",
+        "--vary",
+        "motion.slide_to_roll=0:0.5:2",
+    ];
     args.extend_from_slice(&REDUCED);
     let o = w.ehl(&args);
     assert_eq!(o.code, 0, "stderr: {}", o.stderr);
@@ -600,6 +608,9 @@ fn a_transient_sweep_writes_each_passage() {
     }
     let csv = std::fs::read_to_string(w.file("study/sweep.csv")).unwrap();
     let head = csv.lines().next().unwrap();
-    assert!(head.contains("friction_coefficient_mean_over_travel"), "{head}");
+    assert!(
+        head.contains("friction_coefficient_mean_over_travel"),
+        "{head}"
+    );
     assert_eq!(csv.lines().count(), 3, "{csv}");
 }

@@ -42,7 +42,15 @@ fn bench(c: &mut Criterion) {
         b.iter(|| black_box(kernels.field(&p, Some(&q))))
     });
     g.bench_function("kernel_spectra_256x256x24_build", |b| {
-        b.iter(|| black_box(StressKernels::new(&grid, 0.3, window, false, DEFAULT_CACHE_BYTES)))
+        b.iter(|| {
+            black_box(StressKernels::new(
+                &grid,
+                0.3,
+                window,
+                false,
+                DEFAULT_CACHE_BYTES,
+            ))
+        })
     });
     g.bench_function("influence_tables_256x256_one_layer", |b| {
         b.iter(|| black_box(LayerKernel::new(256, 256, grid.dx, grid.dy, 0.5, 0.3)))

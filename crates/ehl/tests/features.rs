@@ -247,7 +247,8 @@ fn a_patterned_height_map_equals_the_patterned_pit() {
 #[test]
 fn a_height_map_declaring_more_than_its_file_holds_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let mut header = "{'descr': '<f8', 'fortran_order': False, 'shape': (1000000, 1000000), }".to_string();
+    let mut header =
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (1000000, 1000000), }".to_string();
     while (10 + header.len() + 1) % 64 != 0 {
         header.push(' ');
     }
@@ -256,7 +257,8 @@ fn a_height_map_declaring_more_than_its_file_holds_is_refused() {
     bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
     bytes.extend_from_slice(header.as_bytes());
     std::fs::write(dir.path().join("huge.npy"), &bytes).unwrap();
-    let text = DRY.to_string() + "\n[[features]]\nkind = \"height-map\"\nfile = \"huge.npy\"\ndx = 1e-7\ndy = 1e-7\n";
+    let text = DRY.to_string()
+        + "\n[[features]]\nkind = \"height-map\"\nfile = \"huge.npy\"\ndx = 1e-7\ndy = 1e-7\n";
     let case_path = dir.path().join("case.toml");
     match parse_str(&text, &case_path.display().to_string(), &[]) {
         Err(ehl::Error::Case { key, message, .. }) => {
@@ -274,9 +276,20 @@ fn a_height_map_declaring_more_than_its_file_holds_is_refused() {
 #[test]
 fn a_pressure_beyond_the_elastic_range_is_warned() {
     let ball = "kind = \"dry\"\n[body1]\nshape = \"ball\"\nradius = 0.0127\nyoungs_modulus = 210e9\npoisson_ratio = 0.3\n[body2]\nshape = \"flat\"\nyoungs_modulus = 210e9\npoisson_ratio = 0.3\n[load]\nforce = 500.0\n[grid]\nnx = 64\n";
-    let warned = |s: &Solution| s.summary.warnings.iter().any(|w| w.contains("reduced modulus"));
-    let bump = run(&format!("{ball}[[features]]\nkind = \"dent\"\nwidth = 60e-6\ndepth = -1.2e-4\n"));
-    assert!(bump.summary.max_pressure_pa > 0.1 * 2.3e11, "{}", bump.summary.max_pressure_pa);
+    let warned = |s: &Solution| {
+        s.summary
+            .warnings
+            .iter()
+            .any(|w| w.contains("reduced modulus"))
+    };
+    let bump = run(&format!(
+        "{ball}[[features]]\nkind = \"dent\"\nwidth = 60e-6\ndepth = -1.2e-4\n"
+    ));
+    assert!(
+        bump.summary.max_pressure_pa > 0.1 * 2.3e11,
+        "{}",
+        bump.summary.max_pressure_pa
+    );
     assert!(warned(&bump), "{:?}", bump.summary.warnings);
     let smooth = run(ball);
     assert!(!warned(&smooth), "{:?}", smooth.summary.warnings);
@@ -288,7 +301,10 @@ fn a_pressure_beyond_the_elastic_range_is_warned() {
 /// warned.
 #[test]
 fn a_feature_that_never_reaches_the_grid_is_warned() {
-    let path = format!("{}/../../examples/ehl_transient_ball_dent.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/ehl_transient_ball_dent.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let solve = |sets: &[&str]| {
         let mut all: Vec<String> = ["grid.nx=32", "grid.ny=32", "output.snapshots=[]"]
             .iter()
@@ -298,8 +314,15 @@ fn a_feature_that_never_reaches_the_grid_is_warned() {
         let case = ehl::case::load_file(std::path::Path::new(&path), &all).unwrap();
         solve(&case, &Silent).unwrap().summary
     };
-    let never = |s: &ehl::solution::Summary| s.warnings.iter().any(|w| w.contains("never comes onto the grid"));
-    let away = solve(&["features[0].x=-5e-3", "motion.travel={from=-5e-3,to=-4e-3,steps=10}"]);
+    let never = |s: &ehl::solution::Summary| {
+        s.warnings
+            .iter()
+            .any(|w| w.contains("never comes onto the grid"))
+    };
+    let away = solve(&[
+        "features[0].x=-5e-3",
+        "motion.travel={from=-5e-3,to=-4e-3,steps=10}",
+    ]);
     assert!(never(&away), "{:?}", away.warnings);
     let through = solve(&["motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}"]);
     assert!(!never(&through), "{:?}", through.warnings);
@@ -308,6 +331,9 @@ fn a_feature_that_never_reaches_the_grid_is_warned() {
     // arrives, and a dent put at -5 mm but sent from -0.4 mm does
     let sent_away = solve(&["motion.travel={from=-5e-3,to=-4e-3,steps=10}"]);
     assert!(never(&sent_away), "{:?}", sent_away.warnings);
-    let brought = solve(&["features[0].x=-5e-3", "motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}"]);
+    let brought = solve(&[
+        "features[0].x=-5e-3",
+        "motion.travel={from=-0.4e-3,to=0.4e-3,steps=10}",
+    ]);
     assert!(!never(&brought), "{:?}", brought.warnings);
 }

@@ -267,7 +267,10 @@ fn invalid_inputs_are_typed_errors() {
 
 /// The summary of the thesis Table 3.7 line (`examples/ehl_friction_line.toml`) with `sets`.
 fn solve_table_3_7_line(sets: &[&str]) -> ehl::solution::Summary {
-    let path = format!("{}/../../examples/ehl_friction_line.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/ehl_friction_line.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
     ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
@@ -288,13 +291,21 @@ fn an_unphysical_friction_coefficient_is_warned() {
     let f = s.friction_coefficient.unwrap();
     assert!(f > ehl::run::FRICTION_WARNING, "{f}");
     assert!(
-        s.warnings.iter().any(|w| w.contains("friction coefficient") && w.contains("Newtonian")),
+        s.warnings
+            .iter()
+            .any(|w| w.contains("friction coefficient") && w.contains("Newtonian")),
         "{:?}",
         s.warnings
     );
     let s = solve(&["grid.nx=128"]);
     assert!(s.friction_coefficient.unwrap() < 0.05);
-    assert!(!s.warnings.iter().any(|w| w.contains("friction coefficient")), "{:?}", s.warnings);
+    assert!(
+        !s.warnings
+            .iter()
+            .any(|w| w.contains("friction coefficient")),
+        "{:?}",
+        s.warnings
+    );
 }
 
 /// A light line contact (M = 0.96) on the default inlet of 4 b: its film is starved and the
@@ -303,7 +314,10 @@ fn an_unphysical_friction_coefficient_is_warned() {
 #[test]
 fn a_starved_light_contact_is_warned() {
     let solve = solve_table_3_7_line;
-    let light = ["lubricant.viscosity=1.0", "motion={entrainment_speed=40, slide_to_roll=0.02}"];
+    let light = [
+        "lubricant.viscosity=1.0",
+        "motion={entrainment_speed=40, slide_to_roll=0.02}",
+    ];
     let inlet = |w: &[String]| w.iter().any(|w| w.contains("grid.x_min"));
     let short = solve(&[&light[..], &["grid.nx=256"]].concat());
     assert!(inlet(&short.warnings), "{:?}", short.warnings);
@@ -320,16 +334,26 @@ fn a_starved_light_contact_is_warned() {
 /// naming grid.x_min and grid.nx; the example as written (inlet at -3 a, 129^2) is not.
 #[test]
 fn a_cut_inlet_at_high_load_is_warned() {
-    let path = format!("{}/../../examples/ehl_ball_on_glass.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/ehl_ball_on_glass.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let solve = |sets: &[&str]| {
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         let case = ehl::case::load_file(std::path::Path::new(&path), &sets).unwrap();
         ehl::run::solve(&case, &ehl::run::Silent).unwrap().summary
     };
     let warned = |s: &ehl::solution::Summary| {
-        s.warnings.iter().any(|w| w.contains("grid.x_min") && w.contains("grid.nx"))
+        s.warnings
+            .iter()
+            .any(|w| w.contains("grid.x_min") && w.contains("grid.nx"))
     };
-    let cut = solve(&["grid.x_min=-1.0", "grid.x_max=1.0", "grid.nx=32", "grid.ny=32"]);
+    let cut = solve(&[
+        "grid.x_min=-1.0",
+        "grid.x_max=1.0",
+        "grid.nx=32",
+        "grid.ny=32",
+    ]);
     assert!(warned(&cut), "{:?}", cut.warnings);
     let whole = solve(&["grid.nx=64", "grid.ny=64"]);
     assert!(!warned(&whole), "{:?}", whole.warnings);

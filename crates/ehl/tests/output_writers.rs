@@ -468,9 +468,17 @@ fn streamed_equals_in_memory(example: &str, sets: &[&str]) {
     let names = |t: &[(String, Vec<u8>)]| t.iter().map(|f| f.0.clone()).collect::<Vec<_>>();
     assert_eq!(names(&ta), names(&tb), "{example}: the same files");
     for ((name, x), (_, y)) in ta.iter().zip(&tb) {
-        assert!(x == y, "{example}: {name} differs ({} against {} bytes)", x.len(), y.len());
+        assert!(
+            x == y,
+            "{example}: {name} differs ({} against {} bytes)",
+            x.len(),
+            y.len()
+        );
     }
-    assert!(names(&ta).iter().any(|n| n == "passage.gif") && kept > 2, "{example}: {kept} frames");
+    assert!(
+        names(&ta).iter().any(|n| n == "passage.gif") && kept > 2,
+        "{example}: {kept} frames"
+    );
     // nothing was left beside the output: the staging folder became it
     let left: Vec<String> = std::fs::read_dir(root.path())
         .unwrap()
@@ -492,7 +500,12 @@ fn streamed_transient_outputs_equal_the_in_memory_ones() {
     );
     streamed_equals_in_memory(
         "ehl_thesis_ch3_single_pit.toml",
-        &["grid.nx=48", "grid.ny=48", "motion.travel.steps=10", "output.snapshots=[-0.5e-3, 0.0]"],
+        &[
+            "grid.nx=48",
+            "grid.ny=48",
+            "motion.travel.steps=10",
+            "output.snapshots=[-0.5e-3, 0.0]",
+        ],
     );
 }
 

@@ -1,7 +1,9 @@
 //! Stress below the surface (crate::stress) against the closed-form Hertz fields.
 
 use ehl::grid::Grid;
-use ehl::reference::subsurface::{hertz_circle_axis_stress, hertz_circle_stress, hertz_line_stress};
+use ehl::reference::subsurface::{
+    hertz_circle_axis_stress, hertz_circle_stress, hertz_line_stress,
+};
 use ehl::stress::derived::von_mises;
 use ehl::stress::field::stress_field;
 
@@ -60,7 +62,9 @@ fn hertz_line_field_point_by_point() {
 fn von_mises_peak(mu: f64) -> (f64, f64) {
     let nx = 256;
     let grid = Grid::new(nx, 1, -2.0, 2.0, -0.5, 0.5);
-    let p: Vec<f64> = (0..nx).map(|i| (1.0 - grid.x(i).powi(2)).max(0.0).sqrt()).collect();
+    let p: Vec<f64> = (0..nx)
+        .map(|i| (1.0 - grid.x(i).powi(2)).max(0.0).sqrt())
+        .collect();
     let q: Vec<f64> = p.iter().map(|v| mu * v).collect();
     let depths: Vec<f64> = (1..=100).map(|k| 0.01 * k as f64).collect();
     let f = stress_field(&grid, &p, Some(&q), 0.3, &depths, true);
@@ -82,7 +86,10 @@ fn von_mises_peak(mu: f64) -> (f64, f64) {
 #[test]
 fn sliding_moves_the_von_mises_maximum_to_the_surface() {
     let (z0, v0) = von_mises_peak(0.0);
-    assert!((z0 - 0.70).abs() <= 0.011 && (v0 - 0.557).abs() < 2e-3, "{z0} {v0}");
+    assert!(
+        (z0 - 0.70).abs() <= 0.011 && (v0 - 0.557).abs() < 2e-3,
+        "{z0} {v0}"
+    );
     let (z2, _) = von_mises_peak(0.2);
     assert!(z2 > 0.2 && z2 < z0, "mu 0.2: peak at {z2}");
     let (z4, _) = von_mises_peak(0.4);
@@ -90,7 +97,20 @@ fn sliding_moves_the_von_mises_maximum_to_the_surface() {
     // the closed form agrees on where the maximum is
     let m4 = (1..=100)
         .map(|k| 0.01 * k as f64)
-        .map(|z| (0..=400).map(|i| von_mises(&hertz_line_stress(-2.0 + 0.01 * i as f64, z, 1.0, 1.0, 0.4, 0.3))).fold(0.0, f64::max))
+        .map(|z| {
+            (0..=400)
+                .map(|i| {
+                    von_mises(&hertz_line_stress(
+                        -2.0 + 0.01 * i as f64,
+                        z,
+                        1.0,
+                        1.0,
+                        0.4,
+                        0.3,
+                    ))
+                })
+                .fold(0.0, f64::max)
+        })
         .collect::<Vec<f64>>();
     assert!(m4[0] >= m4.iter().cloned().fold(0.0, f64::max) - 1e-12);
 }
@@ -123,7 +143,10 @@ fn hertz_circle_axis_and_no_image_error() {
     for (k, &z) in depths.iter().enumerate() {
         let (sr, sz) = hertz_circle_axis_stress(z, a, p0, nu);
         let s = small[k];
-        worst = worst.max((s[2] - sz).abs()).max((s[0] - sr).abs()).max((s[1] - sr).abs());
+        worst = worst
+            .max((s[2] - sz).abs())
+            .max((s[0] - sr).abs())
+            .max((s[1] - sr).abs());
         // symmetry on the axis: no shear, to the single-precision FFT round-off (~1e-6 p0)
         assert!(s[3].abs() < 1e-5 && s[4].abs() < 1e-5 && s[5].abs() < 1e-5);
         for c in 0..6 {
@@ -199,9 +222,21 @@ fn sliding_hertz_circle_whole_field() {
     for mu in [0.25, 0.5] {
         let coarse = field_error(61, mu, 3);
         let fine = field_error(183, mu, 9); // the same points: every third coarse cell centre
-        let show = |v: &[f64]| v.iter().map(|e| format!("{e:.1e}")).collect::<Vec<_>>().join(" ");
-        eprintln!("sliding circle, mu {mu}: error by depth {} p0 on a/20 cells; {} on a/60", show(&coarse), show(&fine));
-        assert!(max(&coarse) / max(&fine) > 5.2, "mu {mu}: {coarse:?} -> {fine:?}");
+        let show = |v: &[f64]| {
+            v.iter()
+                .map(|e| format!("{e:.1e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        eprintln!(
+            "sliding circle, mu {mu}: error by depth {} p0 on a/20 cells; {} on a/60",
+            show(&coarse),
+            show(&fine)
+        );
+        assert!(
+            max(&coarse) / max(&fine) > 5.2,
+            "mu {mu}: {coarse:?} -> {fine:?}"
+        );
         assert!(max(&fine) < 1e-3, "mu {mu}: {fine:?}");
         assert!(max(&coarse[1..]) < 1.5e-3, "mu {mu}: {coarse:?}");
     }
@@ -269,7 +304,10 @@ fn smooth_line_integral_scales_as_p0_to_the_c_times_b_squared() {
         let fatigue = format!("[fatigue]\ncriterion = \"von-mises\"\nstress_exponent = {c}\n");
         let a = run(&line_case(1.0e9, &fatigue));
         let b = run(&line_case(2.0e9, &fatigue));
-        let (ia, ib) = (a.summary.fatigue_integral.unwrap(), b.summary.fatigue_integral.unwrap());
+        let (ia, ib) = (
+            a.summary.fatigue_integral.unwrap(),
+            b.summary.fatigue_integral.unwrap(),
+        );
         assert!(ia.is_finite() && ib.is_finite() && ia > 0.0, "{ia} {ib}");
         let (ba, bb) = (a.summary.hertz_half_width_m, b.summary.hertz_half_width_m);
         let (pa, pb) = (a.summary.max_pressure_pa, b.summary.max_pressure_pa);
@@ -283,7 +321,10 @@ fn smooth_line_integral_scales_as_p0_to_the_c_times_b_squared() {
     // the layer nearest 0.70 b is within 0.06 b; the value within 1 %)
     let v = a.summary.max_von_mises_pa.unwrap() / pa;
     let z = a.summary.max_von_mises_at_m.unwrap()[2] / ba;
-    assert!((v - 0.557).abs() < 0.006 && (z - 0.70).abs() < 0.07, "{v} p0 at {z} b");
+    assert!(
+        (v - 0.557).abs() < 0.006 && (z - 0.70).abs() < 0.07,
+        "{v} p0 at {z} b"
+    );
 }
 
 /// Life ratio 1 for a feature of zero depth; non-increasing with the depth of a groove at fixed
@@ -301,10 +342,18 @@ fn fatigue_logic() {
     assert_eq!(zero.summary.life_ratio, Some(1.0));
     let lives: Vec<f64> = [0.5e-6, 1.0e-6, 2.0e-6]
         .iter()
-        .map(|&d| run(&line_case(1.5e9, &format!("{fatigue}{}", groove(d)))).summary.life_ratio.unwrap())
+        .map(|&d| {
+            run(&line_case(1.5e9, &format!("{fatigue}{}", groove(d))))
+                .summary
+                .life_ratio
+                .unwrap()
+        })
         .collect();
     assert!(lives[0] < 1.0 && lives[1] < lives[0], "{lives:?}");
-    assert!((lives[2] - lives[1]).abs() < 1e-9, "an open groove's depth does not matter dry: {lives:?}");
+    assert!(
+        (lives[2] - lives[1]).abs() < 1e-9,
+        "an open groove's depth does not matter dry: {lives:?}"
+    );
     let limited = run(&line_case(1.5e9, "[fatigue]\nfatigue_limit = 2e9\n"));
     assert_eq!(limited.summary.fatigue_integral, Some(0.0));
 }
@@ -315,7 +364,10 @@ fn fatigue_logic() {
 fn surface_maximum_is_flagged() {
     let s = run(&line_case(1.5e9, "friction = 0.4\n"));
     assert!(
-        s.summary.warnings.iter().any(|w| w.contains("von Mises maximum of body 1 lies on the first layer")),
+        s.summary
+            .warnings
+            .iter()
+            .any(|w| w.contains("von Mises maximum of body 1 lies on the first layer")),
         "{:?}",
         s.summary.warnings
     );
@@ -328,7 +380,10 @@ fn bad_stress_input_names_the_key() {
     let text = line_case(1.5e9, "").replace("[stress]\nbody = 1", "[stress]\nbody = 3");
     let e = parse_str(&text, "case.toml", &[]).unwrap_err().to_string();
     assert!(e.contains("stress.body"), "{e}");
-    let text = line_case(1.5e9, "").replace("[stress]\nbody = 1\ndepth = 2.0\nlayers = 24\n", "[fatigue]\n");
+    let text = line_case(1.5e9, "").replace(
+        "[stress]\nbody = 1\ndepth = 2.0\nlayers = 24\n",
+        "[fatigue]\n",
+    );
     let e = parse_str(&text, "case.toml", &[]).unwrap_err().to_string();
     assert!(e.contains("fatigue") && e.contains("[stress]"), "{e}");
     let text = line_case(1.5e9, "layers = 0\n");
@@ -346,7 +401,10 @@ fn profile_steady_256_squared_64_layers() {
     use ehl::stress::kernel::LayerKernel;
     use rayon::prelude::*;
     use std::time::Instant;
-    let runs: usize = std::env::var("STRESS_PROFILE_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);
+    let runs: usize = std::env::var("STRESS_PROFILE_RUNS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3);
     let n = 256;
     let grid = Grid::new(n, n, -2.0, 2.0, -2.0, 2.0);
     let p: Vec<f64> = (0..n * n)
@@ -394,11 +452,18 @@ fn profile_steady_256_squared_64_layers() {
 /// The cached path of the same case: building the kernel spectra once (tables + forward FFTs),
 /// then one evaluation from them (2 load FFTs + 6 products and inverse FFTs per layer), and
 /// the 24-layer window of the passage target.
-fn profile_cached(grid: &Grid, p: &[f64], q: &[f64], z: &[f64], median: &dyn Fn(&mut dyn FnMut()) -> f64) {
+fn profile_cached(
+    grid: &Grid,
+    p: &[f64],
+    q: &[f64],
+    z: &[f64],
+    median: &dyn Fn(&mut dyn FnMut()) -> f64,
+) {
     use ehl::stress::field::StressKernels;
     for z in [z, &z[..24]] {
         let mut kernels = None;
-        let build = median(&mut || kernels = Some(StressKernels::new(grid, 0.3, z, false, usize::MAX)));
+        let build =
+            median(&mut || kernels = Some(StressKernels::new(grid, 0.3, z, false, usize::MAX)));
         let kernels = kernels.unwrap();
         let eval = median(&mut || {
             std::hint::black_box(kernels.field(p, Some(q)));
@@ -422,7 +487,10 @@ fn profile_cached(grid: &Grid, p: &[f64], q: &[f64], z: &[f64], median: &dyn Fn(
 /// 96^2 and 30 steps for 0.25 / 1 um.
 #[test]
 fn pit_life_ratio_is_taken_at_the_worst_position() {
-    let path = format!("{}/../../examples/ehl_thesis_ch3_single_pit.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/ehl_thesis_ch3_single_pit.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(path).unwrap();
     let text = format!(
         "{}\n[stress]\nbody = 1\ndepth = 2.0\nlayers = 16\n\n[fatigue]\n",
@@ -443,5 +511,8 @@ fn pit_life_ratio_is_taken_at_the_worst_position() {
         s.summary.life_ratio.unwrap()
     };
     let (shallow, deep) = (ratio(0.25e-6), ratio(1e-6));
-    assert!(deep < shallow && shallow < 1.0, "life ratio 0.25 um {shallow}, 1 um {deep}");
+    assert!(
+        deep < shallow && shallow < 1.0,
+        "life ratio 0.25 um {shallow}, 1 um {deep}"
+    );
 }

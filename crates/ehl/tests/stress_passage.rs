@@ -78,7 +78,11 @@ fn steady_and_passage() -> (Solution, Solution) {
         &format!("travel = {{ duration = {duration:e}, steps = 103 }}"),
         &format!("window = 1.0\n{dv}"),
     ));
-    assert!(transient.summary.converged, "{}", transient.summary.termination);
+    assert!(
+        transient.summary.converged,
+        "{}",
+        transient.summary.termination
+    );
     (steady, transient)
 }
 
@@ -123,7 +127,13 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
     let a = steady.stress.as_ref().expect("steady stress");
     let body = &a.bodies[0];
     let nx = a.grid.nx;
-    let run = transient.transient.as_ref().unwrap().passage.as_ref().expect("passage maps");
+    let run = transient
+        .transient
+        .as_ref()
+        .unwrap()
+        .passage
+        .as_ref()
+        .expect("passage maps");
     assert_eq!(run.every, 1);
     assert!(run.skipped_steps.is_empty());
     let p = &run.passages[0];
@@ -141,7 +151,10 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
     let nxb = p.nx_body;
     // the window's layers are the steady depth grid's (window = depth)
     assert_eq!(p.z, body.field.z);
-    let dv_params = DangVan { alpha: 0.3, beta: 4.5e8 };
+    let dv_params = DangVan {
+        alpha: 0.3,
+        beta: 4.5e8,
+    };
     let t = transient.transient.as_ref().unwrap();
     let (dt, steps) = (t.dt_s, t.timeline.len() - 1);
     let mut worst = [0.0f64; 3];
@@ -155,13 +168,23 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
         // von Mises
         let vm: Vec<f64> = (0..nx).map(|i| body.von_mises[k * nx + i] as f64).collect();
         let istar = (0..nx).fold(0, |m, i| if vm[i] > vm[m] { i } else { m });
-        let tol_vm = 0.5 * neighbours(istar).iter().map(|&n| von_mises(&diff(istar, n))).fold(0.0, f64::max)
+        let tol_vm = 0.5
+            * neighbours(istar)
+                .iter()
+                .map(|&n| von_mises(&diff(istar, n)))
+                .fold(0.0, f64::max)
             + 1e-4 * vm[istar];
         // tau_xz extremes
         let txz: Vec<f64> = (0..nx).map(|i| tensor(i)[4]).collect();
         let imax = (0..nx).fold(0, |m, i| if txz[i] > txz[m] { i } else { m });
         let imin = (0..nx).fold(0, |m, i| if txz[i] < txz[m] { i } else { m });
-        let half_jump = |i: usize| neighbours(i).iter().map(|&n| diff(i, n)[4].abs()).fold(0.0, f64::max) * 0.5;
+        let half_jump = |i: usize| {
+            neighbours(i)
+                .iter()
+                .map(|&n| diff(i, n)[4].abs())
+                .fold(0.0, f64::max)
+                * 0.5
+        };
         let range = txz[imax] - txz[imin];
         let tol_tr = half_jump(imax) + half_jump(imin) + 1e-4 * range;
         // Dang Van over the whole history of column m: the steady tensor at the column's
@@ -187,10 +210,27 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
             let hh = history(m);
             let dv_exact = dang_van_of_history(&hh, &dv_params);
             let n = k * nxb + m;
-            let (v, r, d) = (maps.max_von_mises[n] as f64, maps.tau_xz_range[n] as f64, dv[n] as f64);
-            assert!(v <= vm[istar] + 1e-4 * vm[istar] && v >= vm[istar] - tol_vm, "z = {:.2} b: VM {v:e} vs {:e} (tol {tol_vm:e})", z / b, vm[istar]);
-            assert!((r - range).abs() <= tol_tr, "z = {:.2} b: range {r:e} vs {range:e} (tol {tol_tr:e})", z / b);
-            assert!((d - dv_exact).abs() <= 1e-3 * dv_exact.abs(), "z = {:.2} b: DV {d} vs history {dv_exact}", z / b);
+            let (v, r, d) = (
+                maps.max_von_mises[n] as f64,
+                maps.tau_xz_range[n] as f64,
+                dv[n] as f64,
+            );
+            assert!(
+                v <= vm[istar] + 1e-4 * vm[istar] && v >= vm[istar] - tol_vm,
+                "z = {:.2} b: VM {v:e} vs {:e} (tol {tol_vm:e})",
+                z / b,
+                vm[istar]
+            );
+            assert!(
+                (r - range).abs() <= tol_tr,
+                "z = {:.2} b: range {r:e} vs {range:e} (tol {tol_tr:e})",
+                z / b
+            );
+            assert!(
+                (d - dv_exact).abs() <= 1e-3 * dv_exact.abs(),
+                "z = {:.2} b: DV {d} vs history {dv_exact}",
+                z / b
+            );
             worst[0] = worst[0].max((v - vm[istar]).abs() / tol_vm);
             worst[1] = worst[1].max((r - range).abs() / tol_tr);
             worst[2] = worst[2].max((d - dv_exact).abs() / dv_exact.abs());
@@ -215,7 +255,12 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
                 if m == cols[0] {
                     eprintln!("z = 0.5 b: tau_xz range {:.4} p0 (McEwen 0.5 p0), tolerance {:.4} p0 (int |p - p_Hertz| dx = {:.4} p0 b)", r / p0, tol / p0, dp / (p0 * b));
                 }
-                assert!((r - 0.5 * p0).abs() <= tol, "{} p0 vs 0.5 p0 (tol {} p0)", r / p0, tol / p0);
+                assert!(
+                    (r - 0.5 * p0).abs() <= tol,
+                    "{} p0 vs 0.5 p0 (tol {} p0)",
+                    r / p0,
+                    tol / p0
+                );
             }
         }
     }
@@ -229,7 +274,10 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
     assert_eq!(f.evaluations, 104);
     // every material column is sampled at least once (a scan found the first column of every
     // run never sampled, NaN in all its maps: the body frame was a column too long)
-    assert!(p.contact_span.iter().all(|s| s[0].is_finite() && s[1].is_finite()));
+    assert!(p
+        .contact_span
+        .iter()
+        .all(|s| s[0].is_finite() && s[1].is_finite()));
     assert!(maps.max_von_mises.iter().all(|v| v.is_finite()));
     // and the summary's Dang Van maximum is over the columns that crossed the whole contact
     let dvm = maps.dang_van.as_ref().unwrap();
@@ -244,7 +292,10 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
     assert_eq!(f.max_dang_van, Some(best));
     let m_at = ((f.max_dang_van_at_m.unwrap()[0] - p.x_body(0)) / p.grid.dx).round() as usize;
     assert!(through(m_at), "column {m_at}");
-    assert!(!through(0), "the first column enters the grid late in this run");
+    assert!(
+        !through(0),
+        "the first column enters the grid late in this run"
+    );
 }
 
 /// The passage accumulators' memory depends on the grid, the travel and the window, not on the
@@ -252,14 +303,20 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
 #[test]
 fn passage_memory_does_not_grow_with_the_steps() {
     let mem = |steps: usize| {
-        let text = smooth_line(&format!("travel = {{ duration = 1e-4, steps = {steps} }}"), "window = 0.5\n[fatigue]\ndang_van = {}\n");
+        let text = smooth_line(
+            &format!("travel = {{ duration = 1e-4, steps = {steps} }}"),
+            "window = 0.5\n[fatigue]\ndang_van = {}\n",
+        );
         let case = parse_str(&text, "case.toml", &[]).unwrap();
         ehl::run::stress::passage_memory(&case)
     };
     let (a, b) = (mem(50), mem(5000));
     assert!(a > 0.0 && a == b, "{a} vs {b}");
     // a deeper window costs more
-    let text = smooth_line("travel = { duration = 1e-4, steps = 50 }", "window = 1.0\n[fatigue]\ndang_van = {}\n");
+    let text = smooth_line(
+        "travel = { duration = 1e-4, steps = 50 }",
+        "window = 1.0\n[fatigue]\ndang_van = {}\n",
+    );
     let deeper = ehl::run::stress::passage_memory(&parse_str(&text, "case.toml", &[]).unwrap());
     assert!(deeper > a, "{deeper} vs {a}");
 }
@@ -273,8 +330,16 @@ fn bad_passage_input_names_the_key() {
         ("window = 0.0\n", "stress.window", ""),
         ("window = -1.0\n", "stress.window", ""),
         ("window = 2.0\n", "stress.window", "deepest layer"),
-        ("[fatigue]\ndang_van = { alpha = -0.1 }\n", "fatigue.dang_van.alpha", ""),
-        ("[fatigue]\ndang_van = { beta = 0.0 }\n", "fatigue.dang_van.beta", ""),
+        (
+            "[fatigue]\ndang_van = { alpha = -0.1 }\n",
+            "fatigue.dang_van.alpha",
+            "",
+        ),
+        (
+            "[fatigue]\ndang_van = { beta = 0.0 }\n",
+            "fatigue.dang_van.beta",
+            "",
+        ),
         ("[fatigue]\ndang_van = 0.3\n", "fatigue.dang_van", ""),
     ] {
         let e = err(smooth_line(travel, extra));
@@ -282,11 +347,25 @@ fn bad_passage_input_names_the_key() {
     }
     // a steady run has no passage
     let e = err(smooth_line("", "window = 0.5\n"));
-    assert!(e.contains("stress.window") && e.contains("transient"), "{e}");
-    let e = err(smooth_line("", "[fatigue]\ndang_van = { alpha = 0.3, beta = 4.5e8 }\n"));
-    assert!(e.contains("fatigue.dang_van") && e.contains("transient"), "{e}");
+    assert!(
+        e.contains("stress.window") && e.contains("transient"),
+        "{e}"
+    );
+    let e = err(smooth_line(
+        "",
+        "[fatigue]\ndang_van = { alpha = 0.3, beta = 4.5e8 }\n",
+    ));
+    assert!(
+        e.contains("fatigue.dang_van") && e.contains("transient"),
+        "{e}"
+    );
     // the defaults
-    let case = parse_str(&smooth_line(travel, "[fatigue]\ndang_van = {}\n"), "case.toml", &[]).unwrap();
+    let case = parse_str(
+        &smooth_line(travel, "[fatigue]\ndang_van = {}\n"),
+        "case.toml",
+        &[],
+    )
+    .unwrap();
     assert_eq!(case.fatigue.unwrap().dang_van, Some(DangVan::default()));
 }
 
@@ -307,7 +386,14 @@ fn passage_speed_256_squared_24_layers_150_steps() {
     let steps = 150;
     let dt = grid.dx / speed;
     for dv in [false, true] {
-        let mut passage = Passage::new(1, &grid, speed, steps as f64 * dt, &z, dv.then(DangVan::default));
+        let mut passage = Passage::new(
+            1,
+            &grid,
+            speed,
+            steps as f64 * dt,
+            &z,
+            dv.then(DangVan::default),
+        );
         let (mut t_field, mut t_acc) = (0.0, 0.0);
         // the kernel spectra of the window, built once as PassageRun does (counted in the fields)
         let t0 = Instant::now();
@@ -322,7 +408,11 @@ fn passage_speed_256_squared_24_layers_150_steps() {
                     let (x, y) = (grid.x(k % n), grid.y(k / n));
                     let r2 = x * x + y * y;
                     let bump = 1.0 + 0.3 * (-((x - xf).powi(2) + y * y) / 0.01).exp();
-                    if r2 < 1.0 { 1e9 * (1.0 - r2).sqrt() * bump } else { 0.0 }
+                    if r2 < 1.0 {
+                        1e9 * (1.0 - r2).sqrt() * bump
+                    } else {
+                        0.0
+                    }
                 })
                 .collect();
             let q: Vec<f64> = p.iter().map(|v| 0.05 * v).collect();
@@ -381,12 +471,22 @@ fn hertz_line_passage_gives_mcewen_tau_xz_range_and_von_mises() {
     // the closed form's extremes on a fine grid
     let xs: Vec<f64> = (0..=8000).map(|k| -2.0 + 4.0 * k as f64 / 8000.0).collect();
     let range_exact = {
-        let t: Vec<f64> = xs.iter().map(|&x| hertz_line_stress(x, 0.5, 1.0, 1.0, 0.0, nu)[4]).collect();
-        t.iter().cloned().fold(f64::NEG_INFINITY, f64::max) - t.iter().cloned().fold(f64::INFINITY, f64::min)
+        let t: Vec<f64> = xs
+            .iter()
+            .map(|&x| hertz_line_stress(x, 0.5, 1.0, 1.0, 0.0, nu)[4])
+            .collect();
+        t.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+            - t.iter().cloned().fold(f64::INFINITY, f64::min)
     };
-    let vm_exact = xs.iter().map(|&x| von_mises(&hertz_line_stress(x, 0.70, 1.0, 1.0, 0.0, nu))).fold(0.0, f64::max);
+    let vm_exact = xs
+        .iter()
+        .map(|&x| von_mises(&hertz_line_stress(x, 0.70, 1.0, 1.0, 0.0, nu)))
+        .fold(0.0, f64::max);
     // Johnson quotes three figures at a rounded depth (0.70 b): agreement to 1e-3 p0
-    assert!((range_exact - 0.5).abs() < 1e-3 && (vm_exact - 0.557).abs() < 1e-3, "{range_exact} {vm_exact}");
+    assert!(
+        (range_exact - 0.5).abs() < 1e-3 && (vm_exact - 0.557).abs() < 1e-3,
+        "{range_exact} {vm_exact}"
+    );
     let cols: Vec<usize> = (0..passage.nx_body)
         .filter(|&m| passage.contact_span[m][0] <= -1.9 && passage.contact_span[m][1] >= 1.9)
         .collect();
@@ -397,8 +497,14 @@ fn hertz_line_passage_gives_mcewen_tau_xz_range_and_von_mises() {
         let r = maps.tau_xz_range[m] as f64;
         let v = maps.max_von_mises[nxb + m] as f64;
         worst = worst.max((r - range_exact).abs()).max((v - vm_exact).abs());
-        assert!((r - range_exact).abs() < 2e-3, "column {m}: tau_xz range {r} vs {range_exact}");
-        assert!((v - vm_exact).abs() < 2e-3, "column {m}: von Mises {v} vs {vm_exact}");
+        assert!(
+            (r - range_exact).abs() < 2e-3,
+            "column {m}: tau_xz range {r} vs {range_exact}"
+        );
+        assert!(
+            (v - vm_exact).abs() < 2e-3,
+            "column {m}: von Mises {v} vs {vm_exact}"
+        );
     }
     eprintln!("{} complete columns: tau_xz range {range_exact:.4} p0, von Mises {vm_exact:.4} p0, worst error {worst:.1e} p0", cols.len());
 }
@@ -421,7 +527,8 @@ fn a_maximum_on_the_deepest_window_layer_is_warned() {
         s.summary.warnings.clone()
     };
     let deepest = |w: &[String], name: &str| {
-        w.iter().any(|m| m.contains(name) && m.contains("deepest layer of the passage window"))
+        w.iter()
+            .any(|m| m.contains(name) && m.contains("deepest layer of the passage window"))
     };
     let shallow = passage(0.3);
     assert!(
@@ -429,5 +536,8 @@ fn a_maximum_on_the_deepest_window_layer_is_warned() {
         "{shallow:?}"
     );
     let deep = passage(1.0);
-    assert!(!deep.iter().any(|m| m.contains("deepest layer")), "{deep:?}");
+    assert!(
+        !deep.iter().any(|m| m.contains("deepest layer")),
+        "{deep:?}"
+    );
 }

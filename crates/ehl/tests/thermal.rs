@@ -1187,10 +1187,30 @@ fn a_groove_passes_through_the_thermal_line() {
 #[test]
 fn an_unsettled_thermal_solve_warns_of_its_temperatures() {
     let text = THERMAL.to_string();
-    let said = |s: &Solution| s.summary.warnings.iter().any(|w| w.contains("did not settle: not a solution"));
-    let short = solve(&parse_str(&text, "thermal.toml", &["grid.nx=128".into(), "thermal.max_iterations=2".into()]).unwrap());
+    let said = |s: &Solution| {
+        s.summary
+            .warnings
+            .iter()
+            .any(|w| w.contains("did not settle: not a solution"))
+    };
+    let short = solve(
+        &parse_str(
+            &text,
+            "thermal.toml",
+            &["grid.nx=128".into(), "thermal.max_iterations=2".into()],
+        )
+        .unwrap(),
+    );
     assert!(!short.summary.converged);
-    assert!(short.summary.max_film_temperature_k.is_some() && said(&short), "{:?}", short.summary.warnings);
+    assert!(
+        short.summary.max_film_temperature_k.is_some() && said(&short),
+        "{:?}",
+        short.summary.warnings
+    );
     let settled = solve(&parse_str(&text, "thermal.toml", &["grid.nx=128".into()]).unwrap());
-    assert!(settled.summary.converged && !said(&settled), "{:?}", settled.summary.warnings);
+    assert!(
+        settled.summary.converged && !said(&settled),
+        "{:?}",
+        settled.summary.warnings
+    );
 }

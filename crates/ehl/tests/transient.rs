@@ -541,8 +541,14 @@ fn ripple(srr: f64, lambda_b: f64) -> (f64, f64) {
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let xs: Vec<f64> = (0..nx).map(|i| grid.x(i) / c.b).collect();
-    let dh =
-        |s: &StepResult| -> Vec<f64> { s.fields.film.iter().zip(&s0.fields.film).map(|(a, b)| a - b).collect() };
+    let dh = |s: &StepResult| -> Vec<f64> {
+        s.fields
+            .film
+            .iter()
+            .zip(&s0.fields.film)
+            .map(|(a, b)| a - b)
+            .collect()
+    };
     let (ha, hb) = (dh(&steps[flush]), dh(&steps[flush + lag]));
     let lam = dominant_wavelength(&xs, &hb, (-0.8, 0.8));
     let r = ((-0.6 - xin) / dx) as usize..((0.6 - xin) / dx) as usize;
@@ -608,7 +614,11 @@ fn solve_example(name: &str, sets: &[&str]) -> ehl::solution::Solution {
 }
 
 /// The example's text as `edit` leaves it (to take a table or a key out), then solved.
-fn solve_example_edited(name: &str, edit: &dyn Fn(&str) -> String, sets: &[&str]) -> ehl::solution::Solution {
+fn solve_example_edited(
+    name: &str,
+    edit: &dyn Fn(&str) -> String,
+    sets: &[&str],
+) -> ehl::solution::Solution {
     let path = format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = edit(&std::fs::read_to_string(&path).expect("example"));
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
@@ -618,7 +628,10 @@ fn solve_example_edited(name: &str, edit: &dyn Fn(&str) -> String, sets: &[&str]
 
 /// A case text without its `travel = ...` line: the steady case.
 fn without_travel(t: &str) -> String {
-    t.lines().filter(|l| !l.trim_start().starts_with("travel")).collect::<Vec<_>>().join("\n")
+    t.lines()
+        .filter(|l| !l.trim_start().starts_with("travel"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// A case text without its `[[features]]` tables (up to the next table).
@@ -643,7 +656,12 @@ fn frames_off(sol: &ehl::solution::Solution, reference: (&[f64], &[f64])) -> (f6
     let t = sol.transient.as_ref().expect("a transient run");
     let ph = reference.0.iter().cloned().fold(0.0, f64::max);
     // the thinnest film: the strictest scale for the film's differences
-    let hmin = reference.1.iter().cloned().filter(|v| v.is_finite() && *v > 0.0).fold(f64::INFINITY, f64::min);
+    let hmin = reference
+        .1
+        .iter()
+        .cloned()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold(f64::INFINITY, f64::min);
     let (mut dp, mut dh) = (0.0_f64, 0.0_f64);
     for f in &t.frames {
         for k in 0..f.pressure.len() {
@@ -676,15 +694,35 @@ fn identities_hold_on_a_finite_roller_and_a_ball() {
     let t = sol.transient.as_ref().unwrap();
     assert!(t.timeline.iter().all(|s| s.converged) && t.frames.len() == 9);
     // the smooth steady case: the example without its travel and its feature
-    let smooth: Vec<&str> = roller.iter().copied().filter(|s| !s.starts_with("motion.travel") && !s.starts_with("features")).collect();
-    let steady = solve_example_edited("ehl_thesis_ch3_single_pit.toml", &|t| without_travel(&without_features(t)), &smooth);
-    let (dp, dh) = frames_off(&sol, (&steady.fields.pressure, steady.fields.film.as_ref().unwrap()));
+    let smooth: Vec<&str> = roller
+        .iter()
+        .copied()
+        .filter(|s| !s.starts_with("motion.travel") && !s.starts_with("features"))
+        .collect();
+    let steady = solve_example_edited(
+        "ehl_thesis_ch3_single_pit.toml",
+        &|t| without_travel(&without_features(t)),
+        &smooth,
+    );
+    let (dp, dh) = frames_off(
+        &sol,
+        (
+            &steady.fields.pressure,
+            steady.fields.film.as_ref().unwrap(),
+        ),
+    );
     eprintln!("roller, zero-depth pit: dp {dp:.1e} dh {dh:.1e}");
     assert!(dp < 1e-6 && dh < 1e-6, "roller: dp {dp:e} dh {dh:e}");
     // the check can fail: the thesis' 25 nm pit moves the solution well past it
     let mut pitted = roller.to_vec();
     pitted[3] = "features[0].depth=2.5e-8";
-    let (dp, dh) = frames_off(&solve_example("ehl_thesis_ch3_single_pit.toml", &pitted), (&steady.fields.pressure, steady.fields.film.as_ref().unwrap()));
+    let (dp, dh) = frames_off(
+        &solve_example("ehl_thesis_ch3_single_pit.toml", &pitted),
+        (
+            &steady.fields.pressure,
+            steady.fields.film.as_ref().unwrap(),
+        ),
+    );
     assert!(dp > 1e-4 && dh > 1e-3, "25 nm pit: dp {dp:e} dh {dh:e}");
 
     let ball = [
@@ -703,13 +741,32 @@ fn identities_hold_on_a_finite_roller_and_a_ball() {
     assert!(t.timeline.iter().all(|s| s.converged) && t.frames.len() == 7);
     let steady = solve_example_edited("ehl_transient_ball_dent.toml", &without_travel, &ball);
     assert!(steady.transient.is_none());
-    let (dp, dh) = frames_off(&sol, (&steady.fields.pressure, steady.fields.film.as_ref().unwrap()));
+    let (dp, dh) = frames_off(
+        &sol,
+        (
+            &steady.fields.pressure,
+            steady.fields.film.as_ref().unwrap(),
+        ),
+    );
     eprintln!("ball, dent on the flat at rest: dp {dp:.1e} dh {dh:.1e}");
     assert!(dp < 1e-6 && dh < 1e-6, "ball: dp {dp:e} dh {dh:e}");
     // the identity is not the smooth solution: the dent changes the steady film
-    let smooth = solve_example_edited("ehl_transient_ball_dent.toml", &|t| without_travel(&without_features(t)), &ball[..3]);
-    let (_, dh) = frames_off(&sol, (&smooth.fields.pressure, smooth.fields.film.as_ref().unwrap()));
-    assert!(dh > 0.05, "the dent leaves the film within {dh:e} of the smooth one");
+    let smooth = solve_example_edited(
+        "ehl_transient_ball_dent.toml",
+        &|t| without_travel(&without_features(t)),
+        &ball[..3],
+    );
+    let (_, dh) = frames_off(
+        &sol,
+        (
+            &smooth.fields.pressure,
+            smooth.fields.film.as_ref().unwrap(),
+        ),
+    );
+    assert!(
+        dh > 0.05,
+        "the dent leaves the film within {dh:e} of the smooth one"
+    );
 }
 
 /// Mass on a finite roller: a 1 um pit passing through the thesis roller (mirror images, psi,
@@ -729,9 +786,21 @@ fn mass_is_conserved_at_every_step_on_a_finite_roller() {
         ],
     );
     let t = sol.transient.as_ref().unwrap();
-    let worst = t.timeline.iter().map(|s| s.mass_balance.abs()).fold(0.0, f64::max);
-    let leak = t.timeline.iter().map(|s| s.side_leakage_kg_s.abs()).fold(0.0, f64::max);
-    let storage = t.timeline.iter().map(|s| s.mass_storage_kg_s.abs()).fold(0.0, f64::max);
+    let worst = t
+        .timeline
+        .iter()
+        .map(|s| s.mass_balance.abs())
+        .fold(0.0, f64::max);
+    let leak = t
+        .timeline
+        .iter()
+        .map(|s| s.side_leakage_kg_s.abs())
+        .fold(0.0, f64::max);
+    let storage = t
+        .timeline
+        .iter()
+        .map(|s| s.mass_storage_kg_s.abs())
+        .fold(0.0, f64::max);
     eprintln!("roller, 1 um pit: worst mass balance {worst:.1e}, side leakage up to {leak:.2e} kg/s, storage up to {storage:.2e} kg/s");
     assert!(t.timeline.iter().all(|s| s.converged));
     // the balance is not trivially closed: both the ends and the pit's squeeze carry mass

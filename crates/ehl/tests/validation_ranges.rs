@@ -253,7 +253,11 @@ fn a_transient_run_with_a_coarse_time_step_is_flagged() {
         .filter(|w| w.contains("cells a step"))
         .collect();
     assert_eq!(w.len(), 1, "{:?}", s.warnings);
-    assert!(w[0].contains("motion.travel.steps = 78 gives one"), "{}", w[0]);
+    assert!(
+        w[0].contains("motion.travel.steps = 78 gives one"),
+        "{}",
+        w[0]
+    );
     let s = run(78);
     assert!(
         !s.warnings.iter().any(|w| w.contains("cells a step")),

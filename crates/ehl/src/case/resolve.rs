@@ -1277,7 +1277,10 @@ fn npy_declared_size_fits(path: &std::path::Path) -> Result<(), String> {
     let (start, header_len) = if head[6] == 1 {
         (10usize, u16::from_le_bytes([head[8], head[9]]) as usize)
     } else if head.len() >= 12 {
-        (12, u32::from_le_bytes([head[8], head[9], head[10], head[11]]) as usize)
+        (
+            12,
+            u32::from_le_bytes([head[8], head[9], head[10], head[11]]) as usize,
+        )
     } else {
         return Ok(());
     };
@@ -1300,7 +1303,9 @@ fn npy_declared_size_fits(path: &std::path::Path) -> Result<(), String> {
         .and_then(|r| {
             let r = r.strip_prefix('\'')?;
             let d = &r[..r.find('\'')?];
-            d.trim_start_matches(|c: char| !c.is_ascii_digit()).parse::<u64>().ok()
+            d.trim_start_matches(|c: char| !c.is_ascii_digit())
+                .parse::<u64>()
+                .ok()
         })
         .unwrap_or(1);
     let mut count: u64 = 1;
@@ -1355,7 +1360,11 @@ fn skew_keeps_a_line(
         // length projected on body 2's axis instead (a review)
         lc = lc.min(2.0 * h1 * cos);
     }
-    let bc = if lc > 0.0 { b * (len / lc).sqrt() } else { f64::INFINITY };
+    let bc = if lc > 0.0 {
+        b * (len / lc).sqrt()
+    } else {
+        f64::INFINITY
+    };
     if lc >= 2.0 * bc {
         return Ok(());
     }
@@ -1883,7 +1892,11 @@ fn features(
             feature = feature.with_pattern(p);
         }
         // a height map's own faults (its nodes, its depths) are its file's
-        let faulty = if matches!(feature.shape, FeatureShape::HeightMap(_)) { "file" } else { "kind" };
+        let faulty = if matches!(feature.shape, FeatureShape::HeightMap(_)) {
+            "file"
+        } else {
+            "kind"
+        };
         feature.check().map_err(|m| s.err(faulty, m))?;
         let mut table = t.clone();
         table.insert("body".into(), Value::Integer(body as i64));
@@ -2100,8 +2113,12 @@ fn fatigue(top: &Sec, has_stress: bool, transient: bool) -> R<Option<FatigueSpec
     };
     let fatigue_limit = s.non_negative("fatigue_limit", "Pa")?.unwrap_or(0.0);
     let weibull_slope = s.positive("weibull_slope", "dimensionless")?.unwrap_or(1.1);
-    let stress_exponent = s.positive("stress_exponent", "dimensionless")?.unwrap_or(31.0 / 3.0);
-    let depth_exponent = s.non_negative("depth_exponent", "dimensionless")?.unwrap_or(0.0);
+    let stress_exponent = s
+        .positive("stress_exponent", "dimensionless")?
+        .unwrap_or(31.0 / 3.0);
+    let depth_exponent = s
+        .non_negative("depth_exponent", "dimensionless")?
+        .unwrap_or(0.0);
     let dang_van = match s.table(
         "dang_van",
         "the Dang Van indicator over the passage: { alpha = 0.3, beta = 4.5e8 }",

@@ -377,7 +377,10 @@ fn rheology_and_profiles() {
     assert!(m.contains("crown_radius"), "{m}");
     // a crown arc shorter than the roller, an edge arc that cannot round its zone: refused
     // (a robustness scan ran a 1 mm crown on a 10 mm roller to 31 p_h)
-    let (k, _) = err(ROLLERS, &["body1.profile={ kind = \"crowned\", crown_radius = 1e-3 }"]);
+    let (k, _) = err(
+        ROLLERS,
+        &["body1.profile={ kind = \"crowned\", crown_radius = 1e-3 }"],
+    );
     assert_eq!(k, "body1.profile.crown_radius");
     let (k, _) = err(
         ROLLERS,
@@ -908,7 +911,10 @@ fn body_pairs() {
 #[test]
 fn a_skew_that_crosses_the_rollers_is_refused() {
     for s in ["0.5", "1.03", "-1.03"] {
-        assert!(parse(ROLLERS, &[&format!("alignment.skew={s}")]).is_ok(), "{s}");
+        assert!(
+            parse(ROLLERS, &[&format!("alignment.skew={s}")]).is_ok(),
+            "{s}"
+        );
     }
     for s in ["1.12", "-1.12", "1.5707963"] {
         let (k, m) = err(ROLLERS, &[&format!("alignment.skew={s}")]);

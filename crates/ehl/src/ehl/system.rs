@@ -1364,7 +1364,10 @@ mod tests {
                 .map(|(a, b)| (a - b) * (a - b))
                 .sum::<f64>()
                 .sqrt();
-            eprintln!("{name}, shifted {shifted}: relative error {:.1e}", err / norm);
+            eprintln!(
+                "{name}, shifted {shifted}: relative error {:.1e}",
+                err / norm
+            );
             assert!(err < 1e-3 * norm, "{name}: relative error {}", err / norm);
         }
     }

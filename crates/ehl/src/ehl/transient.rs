@@ -45,8 +45,8 @@
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
 use super::{
-    better, line_band, solve_from, solve_steady_with_fallback_observed, EhlParams, EhlProblem, SolvedFields, Stats,
-    Termination,
+    better, line_band, solve_from, solve_steady_with_fallback_observed, EhlParams, EhlProblem,
+    SolvedFields, Stats, Termination,
 };
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;

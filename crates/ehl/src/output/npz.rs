@@ -71,7 +71,12 @@ impl<'p> Npz<'p> {
         self.add_with(name, array, bytes >= ZIP64_FROM)
     }
 
-    fn add_with<T: WriteNpyExt + ?Sized>(&mut self, name: &str, array: &T, large: bool) -> Result<()> {
+    fn add_with<T: WriteNpyExt + ?Sized>(
+        &mut self,
+        name: &str,
+        array: &T,
+        large: bool,
+    ) -> Result<()> {
         if !large {
             return self.add(name, array);
         }

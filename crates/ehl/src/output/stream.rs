@@ -15,15 +15,15 @@
 //! Nothing is visible before the run ends: the staging folder replaces the output folder only
 //! when every file is written, and an error or Ctrl-C removes it.
 
+use super::io_err;
 use super::npz::Npz;
 use super::transient::{
-    crop_grid, gif_frame_indices, picture_record, highest_frame, pvd_of, timeline_header,
+    crop_grid, gif_frame_indices, highest_frame, picture_record, pvd_of, timeline_header,
     timeline_is_thermal, timeline_row, validate_frame, write_passage_frame_png_of,
-    write_passage_gif_of, write_snapshots, write_timeline_csv, write_timeline_png,
-    write_vtr_frame, zoom_window, FRAMES_DIR, FRAMES_NPZ, GIF_MAX_FRAMES, PASSAGE_GIF,
-    PASSAGE_PNG, PASSAGE_PVD, SNAPSHOTS_DIR, TIMELINE_CSV, TIMELINE_PNG,
+    write_passage_gif_of, write_snapshots, write_timeline_csv, write_timeline_png, write_vtr_frame,
+    zoom_window, FRAMES_DIR, FRAMES_NPZ, GIF_MAX_FRAMES, PASSAGE_GIF, PASSAGE_PNG, PASSAGE_PVD,
+    SNAPSHOTS_DIR, TIMELINE_CSV, TIMELINE_PNG,
 };
-use super::io_err;
 use crate::case::Case;
 use crate::grid::Grid;
 use crate::run::StepSink;
@@ -150,7 +150,10 @@ impl TransientStream {
             let per = |f: fn(&FrameMeta) -> f64| Array1::from_iter(self.frames.iter().map(f));
             npz.add("time_s", &per(|f| f.time_s))?;
             npz.add("x_p_m", &per(|f| f.x_p_m))?;
-            npz.add("step", &Array1::from_iter(self.frames.iter().map(|f| f.step as i64)))?;
+            npz.add(
+                "step",
+                &Array1::from_iter(self.frames.iter().map(|f| f.step as i64)),
+            )?;
             npz.add_grid(g)?;
             for (name, spill) in ["pressure", "film"].iter().zip(spills) {
                 let a = SpilledArray {
@@ -189,13 +192,23 @@ impl TransientStream {
             write_passage_gif_of(&dir.join(PASSAGE_GIF), case_a, g_a, t_a, &shown_sub)?;
         }
         if let Some(s) = still {
-            write_passage_frame_png_of(&dir.join(PASSAGE_PNG), case_a, g_a, t_a, at(s), &shown_sub)?;
+            write_passage_frame_png_of(
+                &dir.join(PASSAGE_PNG),
+                case_a,
+                g_a,
+                t_a,
+                at(s),
+                &shown_sub,
+            )?;
         }
         drop(sub);
         if k > 0 {
             let path = dir.join(PASSAGE_PVD);
-            std::fs::write(&path, pvd_of(self.frames.iter().map(|f| (f.step, f.time_s))))
-                .map_err(|e| io_err(&path, e))?;
+            std::fs::write(
+                &path,
+                pvd_of(self.frames.iter().map(|f| (f.step, f.time_s))),
+            )
+            .map_err(|e| io_err(&path, e))?;
         }
         write_snapshots(&dir.join(SNAPSHOTS_DIR), case, solution)
     }
@@ -279,7 +292,8 @@ impl StepSink for TransientStream {
         timeline_row(&mut self.line, row, self.thermal);
         let path = self.dir.join(TIMELINE_CSV);
         if let Some(w) = self.timeline.as_mut() {
-            w.write_all(self.line.as_bytes()).map_err(|e| io_err(&path, e))?;
+            w.write_all(self.line.as_bytes())
+                .map_err(|e| io_err(&path, e))?;
         }
         let Some(f) = frame else {
             return Ok(self.keep);
@@ -294,7 +308,8 @@ impl StepSink for TransientStream {
             for v in field.iter() {
                 bytes.extend_from_slice(&v.to_le_bytes());
             }
-            w.write_all(&bytes).map_err(|e| io_err(&self.dir.join(name), e))?;
+            w.write_all(&bytes)
+                .map_err(|e| io_err(&self.dir.join(name), e))?;
         }
         write_vtr_frame(&self.dir.join(FRAMES_DIR), &g, f)?;
         let (j0, j1) = self.rows;

@@ -25,10 +25,10 @@ use super::colormap::ColorMap;
 use super::plot::{draw_colorbar_on, draw_err, fmt_sig, render_sized, text_style, Fonts};
 use crate::case::Case;
 use crate::run::stress::{PassageRun, StressAnalysis};
-use crate::stress::passage::{Passage, PassageMaps};
 use crate::solution::Solution;
 use crate::stress::derived;
 use crate::stress::kernel::COMPONENTS;
+use crate::stress::passage::{Passage, PassageMaps};
 use crate::Result;
 use ndarray::{Array1, Array3};
 use plotters::prelude::*;
@@ -62,7 +62,11 @@ fn write_npz(path: &Path, a: &StressAnalysis) -> Result<()> {
     let g = &a.grid;
     let mut npz = super::npz::Npz::create(path)?;
     npz.add_grid(g)?;
-    let z = a.bodies.first().map(|b| b.field.z.clone()).unwrap_or_default();
+    let z = a
+        .bodies
+        .first()
+        .map(|b| b.field.z.clone())
+        .unwrap_or_default();
     npz.add("z", &Array1::from(z.clone()))?;
     let shape = (z.len(), g.ny, g.nx);
     for b in &a.bodies {
@@ -70,7 +74,10 @@ fn write_npz(path: &Path, a: &StressAnalysis) -> Result<()> {
             .iter()
             .zip(b.field.components.iter())
             .map(|(n, v)| (n.to_string(), v))
-            .chain([("von_mises".to_string(), &b.von_mises), ("tresca".to_string(), &b.max_shear)]);
+            .chain([
+                ("von_mises".to_string(), &b.von_mises),
+                ("tresca".to_string(), &b.max_shear),
+            ]);
         for (name, v) in named {
             let arr = Array3::from_shape_vec(shape, v.clone()).map_err(|e| npz.err(e))?;
             npz.add(&format!("{name}_{}", b.body), &arr)?;
@@ -130,7 +137,11 @@ fn profiles_csv(case: &Case, solution: &Solution, a: &StressAnalysis) -> String 
 
 fn write_vtr(path: &Path, a: &StressAnalysis) -> Result<()> {
     let g = &a.grid;
-    let z: Vec<f64> = a.bodies.first().map(|b| b.field.z.iter().map(|v| -v).collect()).unwrap_or_default();
+    let z: Vec<f64> = a
+        .bodies
+        .first()
+        .map(|b| b.field.z.iter().map(|v| -v).collect())
+        .unwrap_or_default();
     let mut names = Vec::new();
     // the fields as computed, in single precision (Float32)
     let mut data: Vec<&[f32]> = Vec::new();
@@ -184,7 +195,9 @@ fn write_png(path: &Path, solution: &Solution, a: &StressAnalysis) -> Result<()>
             "von Mises stress in body {}, section y = {} mm{}",
             body.body,
             fmt_sig(g.y(j) * mm, 4),
-            a.step.map(|s| format!(", step {} (x_p = {} mm)", s.0, fmt_sig(s.1 * mm, 4))).unwrap_or_default()
+            a.step
+                .map(|s| format!(", step {} (x_p = {} mm)", s.0, fmt_sig(s.1 * mm, 4)))
+                .unwrap_or_default()
         );
         let mut chart = ChartBuilder::on(&main)
             .caption(title, text_style(20.0, BLACK))
@@ -196,7 +209,10 @@ fn write_png(path: &Path, solution: &Solution, a: &StressAnalysis) -> Result<()>
             .configure_mesh()
             .disable_mesh()
             .x_desc("x (mm), rolling direction")
-            .y_desc(format!("depth z (um); b = {} um", fmt_sig(half_width * um, 3)))
+            .y_desc(format!(
+                "depth z (um); b = {} um",
+                fmt_sig(half_width * um, 3)
+            ))
             .y_label_formatter(&|v: &f64| fmt_sig(v.abs(), 3))
             .label_style(text_style(15.0, BLACK))
             .axis_desc_style(text_style(17.0, BLACK))
@@ -208,7 +224,11 @@ fn write_png(path: &Path, solution: &Solution, a: &StressAnalysis) -> Result<()>
             // linear between the layers bracketing this depth (the first layer above it)
             let up = z.partition_point(|&v| v < depth).min(z.len() - 1);
             let lo = up.saturating_sub(1);
-            let t = if up == lo { 0.0 } else { ((depth - z[lo]) / (z[up] - z[lo])).clamp(0.0, 1.0) };
+            let t = if up == lo {
+                0.0
+            } else {
+                ((depth - z[lo]) / (z[up] - z[lo])).clamp(0.0, 1.0)
+            };
             for px in 0..w {
                 let x = x_lo + (px as f64 + 0.5) / w as f64 * (x_hi - x_lo);
                 let i = (((x - g.x_min) / g.dx).floor().max(0.0) as usize).min(g.nx - 1);
@@ -220,7 +240,11 @@ fn write_png(path: &Path, solution: &Solution, a: &StressAnalysis) -> Result<()>
             }
         }
         let (px, pz) = (peak.at[0] * mm, -peak.at[2] * um);
-        chart.draw_series(std::iter::once(Cross::new((px, pz), 8, ShapeStyle::from(&CYAN).stroke_width(3))))?;
+        chart.draw_series(std::iter::once(Cross::new(
+            (px, pz),
+            8,
+            ShapeStyle::from(&CYAN).stroke_width(3),
+        )))?;
         chart.draw_series(std::iter::once(Text::new(
             format!(
                 "max {} MPa at z = {} um = {} b",
@@ -237,7 +261,17 @@ fn write_png(path: &Path, solution: &Solution, a: &StressAnalysis) -> Result<()>
             .margin_right(10)
             .right_y_label_area_size(70)
             .build_cartesian_2d(0.0..1.0, 0.0..vmax * mpa)?;
-        draw_colorbar_on(&mut barc, ColorMap::Inferno, 8, Fonts { label: 14.0, desc: 16.0 }, Some(5), "von Mises (MPa)")
+        draw_colorbar_on(
+            &mut barc,
+            ColorMap::Inferno,
+            8,
+            Fonts {
+                label: 14.0,
+                desc: 16.0,
+            },
+            Some(5),
+            "von Mises (MPa)",
+        )
     })
     .map_err(|e| match e {
         crate::Error::Output { .. } => e,
@@ -264,9 +298,19 @@ fn write_passage(dir: &Path, case: &Case, solution: &Solution, run: &PassageRun)
         let k = p.body;
         let shape = (p.z.len(), g.ny, p.nx_body);
         npz.add(&format!("x_body_{k}"), &Array1::from(p.xs_body()))?;
-        npz.add(&format!("x_contact_start_{k}"), &Array1::from(p.contact_span.iter().map(|s| s[0]).collect::<Vec<f64>>()))?;
-        npz.add(&format!("x_contact_end_{k}"), &Array1::from(p.contact_span.iter().map(|s| s[1]).collect::<Vec<f64>>()))?;
-        let named = [("max_von_mises", Some(&m.max_von_mises)), ("tau_xz_range", Some(&m.tau_xz_range)), ("dang_van", m.dang_van.as_ref())];
+        npz.add(
+            &format!("x_contact_start_{k}"),
+            &Array1::from(p.contact_span.iter().map(|s| s[0]).collect::<Vec<f64>>()),
+        )?;
+        npz.add(
+            &format!("x_contact_end_{k}"),
+            &Array1::from(p.contact_span.iter().map(|s| s[1]).collect::<Vec<f64>>()),
+        )?;
+        let named = [
+            ("max_von_mises", Some(&m.max_von_mises)),
+            ("tau_xz_range", Some(&m.tau_xz_range)),
+            ("dang_van", m.dang_van.as_ref()),
+        ];
         for (name, v) in named {
             if let Some(v) = v {
                 let arr = Array3::from_shape_vec(shape, v.clone()).map_err(|e| npz.err(e))?;
@@ -282,35 +326,67 @@ fn write_passage(dir: &Path, case: &Case, solution: &Solution, run: &PassageRun)
         .iter()
         .position(|p| Some(p.body) == f0_body)
         .unwrap_or(0);
-    write_passage_png(&dir.join(STRESS_PASSAGE_PNG), case, solution, &run.passages[pick], &maps[pick])
+    write_passage_png(
+        &dir.join(STRESS_PASSAGE_PNG),
+        case,
+        solution,
+        &run.passages[pick],
+        &maps[pick],
+    )
 }
 
 /// Where `features[0]`'s centre sits in its body's material frame (m): x_p(0) (x_body = x at t = 0).
 fn feature_x_body(case: &Case, solution: &Solution) -> Option<f64> {
     case.features.first()?;
-    solution.transient.as_ref()?.timeline.first().map(|r| r.x_p_m)
+    solution
+        .transient
+        .as_ref()?
+        .timeline
+        .first()
+        .map(|r| r.x_p_m)
 }
 
 /// Two x-z sections (max von Mises, tau_xz range) of one body's passage maps through the row of
 /// `features[0]`'s centre (y = 0 without a feature), depth in um, maxima marked.
-fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage, maps: &PassageMaps) -> Result<()> {
+fn write_passage_png(
+    path: &Path,
+    case: &Case,
+    solution: &Solution,
+    p: &Passage,
+    maps: &PassageMaps,
+) -> Result<()> {
     let g = &p.grid;
     let y0 = case.features.first().map_or(0.0, |f| f.feature.centre.1);
-    let j = if g.ny == 1 { 0 } else { (((y0 - g.y_min) / g.dy).floor().max(0.0) as usize).min(g.ny - 1) };
+    let j = if g.ny == 1 {
+        0
+    } else {
+        (((y0 - g.y_min) / g.dy).floor().max(0.0) as usize).min(g.ny - 1)
+    };
     let (nxb, z) = (p.nx_body, &p.z);
     let plane = nxb * g.ny;
     let zmax = *z.last().unwrap_or(&1.0);
-    let sampled: Vec<usize> = (0..nxb).filter(|&m| !p.contact_span[m][0].is_nan()).collect();
+    let sampled: Vec<usize> = (0..nxb)
+        .filter(|&m| !p.contact_span[m][0].is_nan())
+        .collect();
     let (Some(&m0), Some(&m1)) = (sampled.first(), sampled.last()) else {
         return Ok(());
     };
     let (x_lo, x_hi) = (p.x_body(m0) - 0.5 * g.dx, p.x_body(m1) + 0.5 * g.dx);
     let half_width = solution.summary.hertz_half_width_m;
-    let xf = feature_x_body(case, solution).filter(|_| case.features.first().map(|f| f.body) == Some(p.body));
+    let xf = feature_x_body(case, solution)
+        .filter(|_| case.features.first().map(|f| f.body) == Some(p.body));
     let (um, mm, mpa) = (1e6, 1e3, 1e-6);
     let panels: [(&str, &Vec<f32>, ColorMap); 2] = [
-        ("max-over-passage von Mises", &maps.max_von_mises, ColorMap::Inferno),
-        ("range of tau_xz over the passage", &maps.tau_xz_range, ColorMap::Viridis),
+        (
+            "max-over-passage von Mises",
+            &maps.max_von_mises,
+            ColorMap::Inferno,
+        ),
+        (
+            "range of tau_xz over the passage",
+            &maps.tau_xz_range,
+            ColorMap::Viridis,
+        ),
     ];
     render_sized(path, (1000, 900), |root| {
         let rows = root.split_evenly((2, 1));
@@ -342,7 +418,10 @@ fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage,
                 .configure_mesh()
                 .disable_mesh()
                 .x_desc("x_body (mm): material frame of the body, x - u t")
-                .y_desc(format!("depth z (um); b = {} um", fmt_sig(half_width * um, 3)))
+                .y_desc(format!(
+                    "depth z (um); b = {} um",
+                    fmt_sig(half_width * um, 3)
+                ))
                 .y_label_formatter(&|v: &f64| fmt_sig(v.abs(), 3))
                 .label_style(text_style(15.0, BLACK))
                 .axis_desc_style(text_style(16.0, BLACK))
@@ -353,10 +432,16 @@ fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage,
                 let depth = (py as f64 + 0.5) / h as f64 * zmax;
                 let up = z.partition_point(|&d| d < depth).min(z.len() - 1);
                 let lo = up.saturating_sub(1);
-                let t = if up == lo { 0.0 } else { ((depth - z[lo]) / (z[up] - z[lo])).clamp(0.0, 1.0) };
+                let t = if up == lo {
+                    0.0
+                } else {
+                    ((depth - z[lo]) / (z[up] - z[lo])).clamp(0.0, 1.0)
+                };
                 for px in 0..w {
                     let x = x_lo + (px as f64 + 0.5) / w as f64 * (x_hi - x_lo);
-                    let m = ((x - p.x_body(0)) / g.dx + 0.5).floor().clamp(0.0, (nxb - 1) as f64) as usize;
+                    let m = ((x - p.x_body(0)) / g.dx + 0.5)
+                        .floor()
+                        .clamp(0.0, (nxb - 1) as f64) as usize;
                     let a = v[lo * plane + j * nxb + m] as f64;
                     let b = v[up * plane + j * nxb + m] as f64;
                     let val = a + t * (b - a);
@@ -382,10 +467,18 @@ fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage,
             }
             if best.2.is_finite() {
                 let (px, pz) = (p.x_body(best.1) * mm, -z[best.0] * um);
-                chart.draw_series(std::iter::once(Cross::new((px, pz), 8, ShapeStyle::from(&CYAN).stroke_width(3))))?;
+                chart.draw_series(std::iter::once(Cross::new(
+                    (px, pz),
+                    8,
+                    ShapeStyle::from(&CYAN).stroke_width(3),
+                )))?;
                 // the label on the side of the cross with more room
                 let right = px < 0.5 * (x_lo + x_hi) * mm;
-                let lx = if right { px + 0.02 * (x_hi - x_lo) * mm } else { px - 0.45 * (x_hi - x_lo) * mm };
+                let lx = if right {
+                    px + 0.02 * (x_hi - x_lo) * mm
+                } else {
+                    px - 0.45 * (x_hi - x_lo) * mm
+                };
                 chart.draw_series(std::iter::once(Text::new(
                     format!(
                         "max {} MPa at z = {} um = {} b",
@@ -403,8 +496,22 @@ fn write_passage_png(path: &Path, case: &Case, solution: &Solution, p: &Passage,
                 .margin_right(10)
                 .right_y_label_area_size(70)
                 .build_cartesian_2d(0.0..1.0, 0.0..vmax * mpa)?;
-            let label = if name.starts_with("max") { "von Mises (MPa)" } else { "tau_xz range (MPa)" };
-            draw_colorbar_on(&mut barc, cmap, 8, Fonts { label: 14.0, desc: 16.0 }, Some(5), label)?;
+            let label = if name.starts_with("max") {
+                "von Mises (MPa)"
+            } else {
+                "tau_xz range (MPa)"
+            };
+            draw_colorbar_on(
+                &mut barc,
+                cmap,
+                8,
+                Fonts {
+                    label: 14.0,
+                    desc: 16.0,
+                },
+                Some(5),
+                label,
+            )?;
         }
         Ok(())
     })

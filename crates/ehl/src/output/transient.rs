@@ -627,7 +627,12 @@ pub(super) fn picture_record(t: &TransientRecord, frames: Vec<Frame>) -> Transie
     }
 }
 
-pub(super) fn crop_record(g: &Grid, t: &TransientRecord, y0: f64, y1: f64) -> Option<(Grid, TransientRecord)> {
+pub(super) fn crop_record(
+    g: &Grid,
+    t: &TransientRecord,
+    y0: f64,
+    y1: f64,
+) -> Option<(Grid, TransientRecord)> {
     let (sub, j0, j1) = crop_grid(g, y0, y1)?;
     let cut = |v: &[f64]| v[j0 * g.nx..(j1 + 1) * g.nx].to_vec();
     let frames = t

@@ -219,7 +219,10 @@ pub fn check_report(case: &Case) -> CheckReport {
                     .unwrap_or_default();
                 (name, f.stress_exponent, f.depth_exponent, f.weibull_slope)
             }),
-            dang_van: case.fatigue.and_then(|f| f.dang_van).map(|d| (d.alpha, d.beta)),
+            dang_van: case
+                .fatigue
+                .and_then(|f| f.dang_van)
+                .map(|d| (d.alpha, d.beta)),
         });
     }
     if let (Some(kin), Some(m)) = (crate::run::transient::kinematics(case), &case.motion) {
@@ -264,7 +267,9 @@ pub fn check_report(case: &Case) -> CheckReport {
                 // elastic-piezoviscous, where Hamrock-Dowson covers the last only
                 report.films.push(FilmEstimate {
                     name: "Nijenbanning et al. (1994)",
-                    central: Some(film::nijenbanning_circular_central(mp, lp) * r * (2.0 * u).sqrt()),
+                    central: Some(
+                        film::nijenbanning_circular_central(mp, lp) * r * (2.0 * u).sqrt(),
+                    ),
                     minimum: None,
                     laws: "Barus + incompressible",
                     laws_match: barus && incompressible,
@@ -523,7 +528,11 @@ impl fmt::Display for CheckReport {
             row(
                 f,
                 "depths",
-                format!("{} .. {}", fixed(st.first_m * 1e6, 3), fixed(st.depth_m * 1e6, 2)),
+                format!(
+                    "{} .. {}",
+                    fixed(st.first_m * 1e6, 3),
+                    fixed(st.depth_m * 1e6, 2)
+                ),
                 "um",
             )?;
             row(f, "deepest layer over b", fixed(st.depth_b, 2), "")?;
@@ -534,7 +543,12 @@ impl fmt::Display for CheckReport {
                     format!("{} ({layers})", fixed(w * 1e6, 2)),
                     "um",
                 )?;
-                row(f, "passage maps (accumulators, fields, spectra)", fixed(bytes / 1e6, 1), "MB")?;
+                row(
+                    f,
+                    "passage maps (accumulators, fields, spectra)",
+                    fixed(bytes / 1e6, 1),
+                    "MB",
+                )?;
             }
             if let Some((name, c, h, e)) = &st.fatigue {
                 row(f, "fatigue criterion", name.clone(), "")?;
@@ -558,7 +572,11 @@ impl fmt::Display for CheckReport {
         row(
             f,
             "estimate (limit)",
-            format!("{} ({})", fixed(self.memory.0 / 1e6, 1), fixed(self.memory.1 / 1e6, 0)),
+            format!(
+                "{} ({})",
+                fixed(self.memory.0 / 1e6, 1),
+                fixed(self.memory.1 / 1e6, 0)
+            ),
             "MB",
         )?;
         if let Some(t) = &self.thermal {
@@ -724,10 +742,19 @@ mod tests {
         };
         let r = ball(&[]);
         let central = |r: &CheckReport, name: &str| {
-            r.films.iter().find(|f| f.name.starts_with(name)).and_then(|f| f.central)
+            r.films
+                .iter()
+                .find(|f| f.name.starts_with(name))
+                .and_then(|f| f.central)
         };
-        let (nij, hd) = (central(&r, "Nijenbanning").unwrap(), central(&r, "Hamrock-Dowson").unwrap());
-        assert!((nij / 212.6e-9 - 1.0).abs() < 0.2 && (hd / 212.6e-9 - 1.0).abs() < 0.2, "{nij} {hd}");
+        let (nij, hd) = (
+            central(&r, "Nijenbanning").unwrap(),
+            central(&r, "Hamrock-Dowson").unwrap(),
+        );
+        assert!(
+            (nij / 212.6e-9 - 1.0).abs() < 0.2 && (hd / 212.6e-9 - 1.0).abs() < 0.2,
+            "{nij} {hd}"
+        );
         assert!(!r.to_string().contains("nearly isoviscous"));
         let iso = ball(&["lubricant.pressure_viscosity_coefficient=0"]);
         assert!(central(&iso, "Nijenbanning").unwrap() > 0.0);
@@ -820,7 +847,10 @@ mod stress_tests {
     /// it silent on both): the example line with the defaults, 3 b deep, c = 31/3.
     #[test]
     fn the_stress_tables_are_reported() {
-        let path = format!("{}/../../examples/stress_line_sliding.toml", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/../../examples/stress_line_sliding.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let case = crate::case::load_file(std::path::Path::new(&path), &["fatigue={}".to_string()])
             .unwrap();
         let r = super::check_report(&case);
@@ -833,7 +863,10 @@ mod stress_tests {
         assert!((c - 31.0 / 3.0).abs() < 1e-12);
         assert!(s.window.is_none(), "a steady case has no passage window");
         let text = r.to_string();
-        assert!(text.contains("stress below the surface") && text.contains("fatigue criterion"), "{text}");
+        assert!(
+            text.contains("stress below the surface") && text.contains("fatigue criterion"),
+            "{text}"
+        );
         assert!(r.memory.0 > 0.0 && r.memory.0 < r.memory.1);
     }
 }

@@ -6,7 +6,6 @@
 
 use std::f64::consts::PI;
 
-
 /// Stress at (x, z) below a Hertz line contact of half-width `b` and peak pressure `p0`
 /// (p = p0 sqrt(1 - x^2/b^2)) with a full-sliding traction q = `mu` p along +x, plane strain
 /// with Poisson ratio `nu`. McEwen (1949) for the normal load, Smith & Liu (1953) for the
@@ -27,7 +26,8 @@ pub fn hertz_line_stress(x: f64, z: f64, b: f64, p0: f64, mu: f64, nu: f64) -> [
     let n = x.signum() * (0.5 * (r - a)).max(0.0).sqrt();
     let d = m * m + n * n;
     let (k, kt) = (p0 / b, mu * p0 / b);
-    let sxx = -k * (m * (1.0 + (z * z + n * n) / d) - 2.0 * z) + kt * (n * (2.0 - (z * z - m * m) / d) - 2.0 * x);
+    let sxx = -k * (m * (1.0 + (z * z + n * n) / d) - 2.0 * z)
+        + kt * (n * (2.0 - (z * z - m * m) / d) - 2.0 * x);
     let szz = -k * m * (1.0 - (z * z + n * n) / d) - kt * n * (m * m - z * z) / d;
     let sxz = -k * n * (m * m - z * z) / d - kt * (m * (1.0 + (z * z + n * n) / d) - 2.0 * z);
     [sxx, nu * (sxx + szz), szz, 0.0, sxz, 0.0]
@@ -93,13 +93,18 @@ pub fn cerruti_point(x: f64, y: f64, z: f64, nu: f64) -> [f64; 6] {
     let (a2, a3) = (a * a, a * a * a);
     [
         c * (-3.0 * x.powi(3) / r5
-            + m * (x / r3 - 3.0 * x / (rho * a2) + x.powi(3) / (r3 * a2) + 2.0 * x.powi(3) / (rho * rho * a3))),
+            + m * (x / r3 - 3.0 * x / (rho * a2)
+                + x.powi(3) / (r3 * a2)
+                + 2.0 * x.powi(3) / (rho * rho * a3))),
         c * (-3.0 * x * y * y / r5
-            + m * (x / r3 - x / (rho * a2) + x * y * y / (r3 * a2) + 2.0 * x * y * y / (rho * rho * a3))),
+            + m * (x / r3 - x / (rho * a2)
+                + x * y * y / (r3 * a2)
+                + 2.0 * x * y * y / (rho * rho * a3))),
         -3.0 * c * x * z * z / r5,
         -3.0 * c * x * y * z / r5,
         -3.0 * c * x * x * z / r5,
-        c * (-3.0 * x * x * y / r5 + m * (-y / (rho * a2) + x * x * y / (r3 * a2) + 2.0 * x * x * y / (rho * rho * a3))),
+        c * (-3.0 * x * x * y / r5
+            + m * (-y / (rho * a2) + x * x * y / (r3 * a2) + 2.0 * x * x * y / (rho * rho * a3))),
     ]
 }
 
@@ -148,7 +153,16 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 /// disc) or Gauss-Legendre with the same cosine map (the rays that hit the disc, for points
 /// outside it). `n` nodes each way: 96 gives about 1e-9 p0 at z >= 0.05 a (tested against
 /// Huber's axis and against 2n).
-pub fn hertz_circle_stress(x: f64, y: f64, z: f64, a: f64, p0: f64, mu: f64, nu: f64, n: usize) -> [f64; 6] {
+pub fn hertz_circle_stress(
+    x: f64,
+    y: f64,
+    z: f64,
+    a: f64,
+    p0: f64,
+    mu: f64,
+    nu: f64,
+    n: usize,
+) -> [f64; 6] {
     let gl = gauss_legendre(n.max(1));
     let r0 = (x * x + y * y).sqrt();
     let mut out = [0.0; 6];
@@ -191,7 +205,10 @@ pub fn hertz_circle_stress(x: f64, y: f64, z: f64, a: f64, p0: f64, mu: f64, nu:
         let alpha = (a / r0).min(1.0).asin();
         for &(t, w) in &gl {
             let psi = 0.5 * PI * (t + 1.0);
-            ray(theta_c - alpha * psi.cos(), alpha * psi.sin() * 0.5 * PI * w);
+            ray(
+                theta_c - alpha * psi.cos(),
+                alpha * psi.sin() * 0.5 * PI * w,
+            );
         }
     }
     out
@@ -210,7 +227,10 @@ mod tests {
             let p = p0 * (1.0 - x * x).sqrt();
             assert!((s[2] + p).abs() < 1e-12, "szz {x}");
             assert!((s[4] + mu * p).abs() < 1e-12, "sxz {x}");
-            assert!((s[0] - (-p - 2.0 * mu * p0 * x / b)).abs() < 1e-12, "sxx {x}");
+            assert!(
+                (s[0] - (-p - 2.0 * mu * p0 * x / b)).abs() < 1e-12,
+                "sxx {x}"
+            );
         }
         // outside the contact sigma_xx = -2 mu p0 (x/b -+ sqrt(x^2/b^2 - 1)) (Johnson 1985 sec. 7.1):
         // tension behind (2 mu p0 at the trailing edge), compression ahead
@@ -239,8 +259,14 @@ mod tests {
                 (best_v, zv) = (von_mises(&s), z);
             }
         }
-        assert!((best_t - 0.300).abs() < 5e-4 && (zt - 0.786).abs() < 1e-3, "{best_t} at {zt}");
-        assert!((best_v - 0.557).abs() < 1e-3 && (zv - 0.70).abs() < 6e-3, "{best_v} at {zv}");
+        assert!(
+            (best_t - 0.300).abs() < 5e-4 && (zt - 0.786).abs() < 1e-3,
+            "{best_t} at {zt}"
+        );
+        assert!(
+            (best_v - 0.557).abs() < 1e-3 && (zv - 0.70).abs() < 6e-3,
+            "{best_v} at {zv}"
+        );
         let s = hertz_line_stress(0.866, 0.5, b, p0, 0.0, nu);
         assert!((s[4].abs() - 0.250).abs() < 5e-4, "{}", s[4]);
     }
@@ -251,12 +277,19 @@ mod tests {
             let rule = gauss_legendre(n);
             for k in 0..=(2 * n) {
                 let q: f64 = rule.iter().map(|&(t, w)| w * t.powi(k as i32)).sum();
-                let exact = if k % 2 == 1 { 0.0 } else { 2.0 / (k + 1) as f64 };
+                let exact = if k % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (k + 1) as f64
+                };
                 if k < 2 * n {
                     assert!((q - exact).abs() < 1e-13, "n {n}, t^{k}: {q} vs {exact}");
                 } else if n <= 12 {
                     // (the error of t^2n falls like 4^-n: past n = 12 it is below round-off)
-                    assert!((q - exact).abs() > 1e-12, "n {n}: t^{k} should not be exact");
+                    assert!(
+                        (q - exact).abs() > 1e-12,
+                        "n {n}: t^{k} should not be exact"
+                    );
                 }
             }
         }
@@ -269,7 +302,12 @@ mod tests {
         let axis = boussinesq_point(0.0, 0.0, z, nu);
         let near = boussinesq_point(1e-9, 2e-9, z, nu);
         for k in 0..6 {
-            assert!((axis[k] - near[k]).abs() < 1e-7, "{k}: {} vs {}", axis[k], near[k]);
+            assert!(
+                (axis[k] - near[k]).abs() < 1e-7,
+                "{k}: {} vs {}",
+                axis[k],
+                near[k]
+            );
         }
     }
 
@@ -282,15 +320,29 @@ mod tests {
         for &z in &[0.05, 0.2, 0.48, 1.0, 2.5] {
             let s = hertz_circle_stress(0.0, 0.0, z, a, p0, 0.0, nu, 96);
             let (sr, sz) = hertz_circle_axis_stress(z, a, p0, nu);
-            assert!((s[0] - sr).abs() < 1e-9 && (s[1] - sr).abs() < 1e-9, "z {z}: {} vs {sr}", s[0]);
+            assert!(
+                (s[0] - sr).abs() < 1e-9 && (s[1] - sr).abs() < 1e-9,
+                "z {z}: {} vs {sr}",
+                s[0]
+            );
             assert!((s[2] - sz).abs() < 1e-9, "z {z}: {} vs {sz}", s[2]);
             assert!(s[3].abs() < 1e-9 && s[4].abs() < 1e-9 && s[5].abs() < 1e-9);
         }
-        for &(x, y, z) in &[(0.3, -0.2, 0.1), (-0.8, 0.5, 0.3), (1.3, 0.4, 0.25), (-1.6, -0.9, 0.6)] {
+        for &(x, y, z) in &[
+            (0.3, -0.2, 0.1),
+            (-0.8, 0.5, 0.3),
+            (1.3, 0.4, 0.25),
+            (-1.6, -0.9, 0.6),
+        ] {
             let s1 = hertz_circle_stress(x, y, z, a, p0, 0.3, nu, 96);
             let s2 = hertz_circle_stress(x, y, z, a, p0, 0.3, nu, 192);
             for k in 0..6 {
-                assert!((s1[k] - s2[k]).abs() < 1e-9, "({x}, {y}, {z}) {k}: {} vs {}", s1[k], s2[k]);
+                assert!(
+                    (s1[k] - s2[k]).abs() < 1e-9,
+                    "({x}, {y}, {z}) {k}: {} vs {}",
+                    s1[k],
+                    s2[k]
+                );
             }
         }
     }
@@ -303,10 +355,16 @@ mod tests {
         for &(x, y) in &[(0.0, 0.0), (0.4, -0.3), (-0.6, 0.2)] {
             let s = hertz_circle_stress(x, y, z, a, p0, mu, nu, 400);
             let p = p0 * (1.0 - (x * x + y * y) / (a * a)).sqrt();
-            assert!((s[2] + p).abs() < 1e-2 && (s[4] + mu * p).abs() < 1e-2 && s[3].abs() < 1e-2, "{s:?}");
+            assert!(
+                (s[2] + p).abs() < 1e-2 && (s[4] + mu * p).abs() < 1e-2 && s[3].abs() < 1e-2,
+                "{s:?}"
+            );
         }
         let s = hertz_circle_stress(1.4, 0.3, z, a, p0, mu, nu, 400);
-        assert!(s[2].abs() < 1e-2 && s[4].abs() < 1e-2 && s[3].abs() < 1e-2, "{s:?}");
+        assert!(
+            s[2].abs() < 1e-2 && s[4].abs() < 1e-2 && s[3].abs() < 1e-2,
+            "{s:?}"
+        );
     }
 
     #[test]
@@ -320,6 +378,9 @@ mod tests {
                 (best, at) = ((sz - sr).abs(), z);
             }
         }
-        assert!((best - 0.62).abs() < 5e-3 && (at - 0.48).abs() < 1e-2, "{best} at {at}");
+        assert!(
+            (best - 0.62).abs() < 5e-3 && (at - 0.48).abs() < 1e-2,
+            "{best} at {at}"
+        );
     }
 }

@@ -99,7 +99,11 @@ pub(crate) fn reynolds_row(
         }
         let m = k - o;
         let shift = f.couette_shift.map_or(0.0, |s| s[m]);
-        sink.local(Term::Wedge, m, lin.drho[m] * (f.h[m] * total + shift * couette));
+        sink.local(
+            Term::Wedge,
+            m,
+            lin.drho[m] * (f.h[m] * total + shift * couette),
+        );
         sink.kernel(Term::Wedge, m, total * f.rho[m]);
     }
 }
@@ -191,7 +195,9 @@ mod tests {
         fn new(second_order: bool) -> Self {
             let (nx, ny) = (7, 5);
             let n = nx * ny;
-            let active: Vec<bool> = (0..n).map(|k| k != 3 && k != 2 * nx + 5 && k != 4 * nx).collect();
+            let active: Vec<bool> = (0..n)
+                .map(|k| k != 3 && k != 2 * nx + 5 && k != 4 * nx)
+                .collect();
             Problem {
                 g: ReynoldsGrid {
                     nx,
@@ -219,8 +225,13 @@ mod tests {
         #[allow(clippy::type_complexity)]
         fn fields(&self, p: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
             let n = p.len();
-            let (mut rho, mut drho, mut h, mut eps, mut dl) =
-                (vec![1.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (mut rho, mut drho, mut h, mut eps, mut dl) = (
+                vec![1.0; n],
+                vec![0.0; n],
+                vec![0.0; n],
+                vec![0.0; n],
+                vec![0.0; n],
+            );
             for m in 0..n {
                 if !self.active[m] {
                     continue;
@@ -294,7 +305,13 @@ mod tests {
             let pb = Problem::new(second);
             let n = pb.active.len();
             let p: Vec<f64> = (0..n)
-                .map(|k| if pb.active[k] { 0.2 + 0.7 * ((k * 13) % 17) as f64 / 17.0 } else { 0.0 })
+                .map(|k| {
+                    if pb.active[k] {
+                        0.2 + 0.7 * ((k * 13) % 17) as f64 / 17.0
+                    } else {
+                        0.0
+                    }
+                })
                 .collect();
             let (rho, drho, h, eps, dlneta) = pb.fields(&p);
             let lin = Linearisation {

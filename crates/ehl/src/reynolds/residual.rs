@@ -153,7 +153,10 @@ pub(crate) fn couette_rule(
     let k = j * g.nx + i;
     let first_cell = i == 0 || !active[k - 1];
     let west = if first_cell {
-        Upwind { offset: 0, second: false }
+        Upwind {
+            offset: 0,
+            second: false,
+        }
     } else {
         let second = g.second_order && i > 1 && active[k - 2];
         Upwind { offset: 1, second }
@@ -214,7 +217,11 @@ pub(crate) fn couette_stencil(g: &ReynoldsGrid, active: &[bool], i: usize, j: us
 /// The residual forms the face from it ([`face`]), the Jacobian differentiates it
 /// (`crate::reynolds::jacobian`).
 #[inline(always)]
-pub(crate) fn face_weights(active: &[bool], n: Option<usize>, d2: f64) -> (f64, f64, Option<usize>) {
+pub(crate) fn face_weights(
+    active: &[bool],
+    n: Option<usize>,
+    d2: f64,
+) -> (f64, f64, Option<usize>) {
     match n {
         Some(n) if active[n] => (0.5 / d2, 0.5 / d2, Some(n)),
         _ => (2.0 / d2, 0.0, None),

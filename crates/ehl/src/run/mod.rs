@@ -365,7 +365,11 @@ pub fn solve(case: &Case, progress: &dyn Progress) -> Result<Solution> {
 /// run never calls it). The frames `sink` declines stay out of the solution's
 /// [`crate::solution::TransientRecord::frames`], except in a run with `[stress]`, whose
 /// worst-frame analysis needs them all.
-pub fn solve_with(case: &Case, progress: &dyn Progress, sink: &mut dyn StepSink) -> Result<Solution> {
+pub fn solve_with(
+    case: &Case,
+    progress: &dyn Progress,
+    sink: &mut dyn StepSink,
+) -> Result<Solution> {
     let start = Instant::now();
     let geometry = Geometry::new(case);
     let grid = geometry.grid();
@@ -766,7 +770,9 @@ fn inlet_warning(case: &Case, solution: &mut Solution) {
 /// on a dry ball solved to 139 GPa, p / E' = 0.6, without a word).
 fn elastic_range_warning(case: &Case, s: &mut Summary) {
     let e_red = case.reduced_modulus();
-    let peak = s.max_pressure_pa.max(s.max_pressure_over_travel_pa.unwrap_or(0.0));
+    let peak = s
+        .max_pressure_pa
+        .max(s.max_pressure_over_travel_pa.unwrap_or(0.0));
     let ratio = peak / e_red;
     if ratio > crate::case::MAX_PRESSURE_OVER_MODULUS {
         s.warnings.push(format!(
@@ -800,7 +806,10 @@ fn friction_warning(case: &Case, s: &mut Summary) {
     }
     let (newtonian, limited) = match case.lubricant.as_ref().map(|l| &l.rheology) {
         Some(crate::lubricant::Rheology::Newtonian) | None => (true, false),
-        Some(r) => (false, crate::lubricant::rheology::limiting_shear_stress(r, 1.0).is_some()),
+        Some(r) => (
+            false,
+            crate::lubricant::rheology::limiting_shear_stress(r, 1.0).is_some(),
+        ),
     };
     let why = if newtonian {
         "the lubricant is Newtonian: at the contact's pressure its viscosity gives shear stresses no oil carries; give lubricant.rheology a non-Newtonian model with a limiting shear stress (Carreau or Eyring with limiting_shear_coefficient)"
@@ -1017,7 +1026,13 @@ fn solve_ehl(
     summary.iterations = r.iterations;
     // the EHL solver writes f64::MAX for a residual it could not evaluate: leave it out
     summary.residual = (r.residual.is_finite() && r.residual < f64::MAX).then_some(r.residual);
-    ehl_figures(&mut summary, &grid, &r.fields.pressure, &r.fields.film, load);
+    ehl_figures(
+        &mut summary,
+        &grid,
+        &r.fields.pressure,
+        &r.fields.film,
+        load,
+    );
     summary.mass_inflow_kg_s = Some(r.inflow);
     summary.mass_outflow_kg_s = Some(r.outflow);
     summary.side_leakage_kg_s = Some(r.side_leakage);
@@ -1141,7 +1156,8 @@ mod tests {
         assert!(check_memory(&small, 8e9, "a test limit").is_ok());
         // a deep stress field names stress.layers and says so (a scan found its message
         // telling to use fewer cells); a small limit reads in MB, not "0.00 GB"
-        let mut deep = crate::case::parse_str(&text, "c.toml", &["stress={ layers = 8 }".into()]).unwrap();
+        let mut deep =
+            crate::case::parse_str(&text, "c.toml", &["stress={ layers = 8 }".into()]).unwrap();
         deep.grid.nx = 1024;
         deep.grid.ny = 1024;
         deep.stress.as_mut().unwrap().layers = 1024;

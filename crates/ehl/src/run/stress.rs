@@ -33,15 +33,27 @@ fn loads(solution: &Solution) -> (Vec<f64>, Option<Vec<f64>>, Option<(usize, f64
             let pb = b.pressure.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
             pa.total_cmp(&pb)
         }) {
-            return (f.pressure.clone(), Some(f.film.clone()), Some((f.step, f.x_p_m)));
+            return (
+                f.pressure.clone(),
+                Some(f.film.clone()),
+                Some((f.step, f.x_p_m)),
+            );
         }
     }
-    (solution.fields.pressure.clone(), solution.fields.film.clone(), None)
+    (
+        solution.fields.pressure.clone(),
+        solution.fields.film.clone(),
+        None,
+    )
 }
 
 /// Computes the stress of `solution` when the case asks for it (`[stress]`); a warning goes
 /// into `warnings` when the shear traction could not be formed (the stress is then frictionless).
-pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> Result<Option<StressAnalysis>> {
+pub fn analyse(
+    case: &Case,
+    solution: &Solution,
+    warnings: &mut Vec<String>,
+) -> Result<Option<StressAnalysis>> {
     let Some(spec) = &case.stress else {
         return Ok(None);
     };
@@ -70,12 +82,24 @@ pub fn analyse(case: &Case, solution: &Solution, warnings: &mut Vec<String>) -> 
         }
     }
     // both bodies of one Poisson ratio share the kernel spectra (what fits the cache budget)
-    let shared = shared_kernels(case).then(|| StressKernels::new(&grid, case.body1.poisson_ratio, &z, line, DEFAULT_CACHE_BYTES));
+    let shared = shared_kernels(case).then(|| {
+        StressKernels::new(
+            &grid,
+            case.body1.poisson_ratio,
+            &z,
+            line,
+            DEFAULT_CACHE_BYTES,
+        )
+    });
     let bodies = spec
         .bodies
         .iter()
         .map(|&k| {
-            let nu = if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio };
+            let nu = if k == 1 {
+                case.body1.poisson_ratio
+            } else {
+                case.body2.poisson_ratio
+            };
             let q = tractions.as_ref().map(|t| t[k as usize - 1].as_slice());
             match &shared {
                 Some(kernels) => BodyStress::from_field(k, &grid, nu, kernels.field(&pressure, q)),
@@ -101,11 +125,20 @@ fn worst_frame(
     warnings: &mut Vec<String>,
 ) -> Result<StressAnalysis> {
     let spec = case.stress.as_ref().expect("called with [stress]");
-    let t = solution.transient.as_ref().expect("called for a transient run");
+    let t = solution
+        .transient
+        .as_ref()
+        .expect("called for a transient run");
     let grid = solution.grid;
     let line = case.is_infinite_line();
     let area = if line { grid.dx } else { grid.cell_area() };
-    let nu = |k: u8| if k == 1 { case.body1.poisson_ratio } else { case.body2.poisson_ratio };
+    let nu = |k: u8| {
+        if k == 1 {
+            case.body1.poisson_ratio
+        } else {
+            case.body2.poisson_ratio
+        }
+    };
     let budget = DEFAULT_CACHE_BYTES / spec.bodies.len().max(1);
     let mut kernels: Vec<(f64, StressKernels)> = Vec::new();
     for &k in &spec.bodies {
@@ -131,12 +164,19 @@ fn worst_frame(
             .bodies
             .iter()
             .map(|&k| {
-                let kern = &kernels.iter().find(|(n, _)| *n == nu(k)).expect("built above").1;
+                let kern = &kernels
+                    .iter()
+                    .find(|(n, _)| *n == nu(k))
+                    .expect("built above")
+                    .1;
                 let qk = q.as_ref().map(|t| t[k as usize - 1].as_slice());
                 BodyStress::from_field(k, &grid, nu(k), kern.field(&pressure, qk))
             })
             .collect();
-        let total: f64 = bodies.iter().map(|b| b.fatigue_integral(area, params)).sum();
+        let total: f64 = bodies
+            .iter()
+            .map(|b| b.fatigue_integral(area, params))
+            .sum();
         if best.as_ref().is_none_or(|(v, _)| total > *v) {
             best = Some((
                 total,
@@ -170,7 +210,11 @@ fn case_cells(case: &Case) -> (usize, usize, f64, f64) {
     let g = case.grid;
     let (nx, ny) = (g.nx.max(1), g.ny.max(1));
     let dx = (g.x_max - g.x_min) / nx as f64;
-    let dy = if case.is_infinite_line() { f64::INFINITY } else { (g.y_max - g.y_min) / ny as f64 };
+    let dy = if case.is_infinite_line() {
+        f64::INFINITY
+    } else {
+        (g.y_max - g.y_min) / ny as f64
+    };
     (nx, ny, dx, dy)
 }
 
@@ -183,7 +227,13 @@ fn distinct_poisson_ratios(case: &Case) -> usize {
     let mut nus: Vec<f64> = spec
         .bodies
         .iter()
-        .map(|&k| if k == 2 { case.body2.poisson_ratio } else { case.body1.poisson_ratio })
+        .map(|&k| {
+            if k == 2 {
+                case.body2.poisson_ratio
+            } else {
+                case.body1.poisson_ratio
+            }
+        })
         .collect();
     nus.dedup();
     nus.len()
@@ -214,7 +264,11 @@ pub fn worst_frame_bytes(case: &Case) -> f64 {
 /// ([`shared_kernels`]; 0 otherwise, and for the worst-frame search, which keeps its own:
 /// [`worst_frame_bytes`]), within [`DEFAULT_CACHE_BYTES`].
 pub fn shared_kernel_bytes(case: &Case) -> f64 {
-    let Some(spec) = case.stress.as_ref().filter(|_| shared_kernels(case) && !worst_frame_search(case)) else {
+    let Some(spec) = case
+        .stress
+        .as_ref()
+        .filter(|_| shared_kernels(case) && !worst_frame_search(case))
+    else {
         return 0.0;
     };
     let (nx, ny, dx, dy) = case_cells(case);
@@ -344,9 +398,11 @@ pub fn passage_every(dx: f64, dt: f64, speeds: [f64; 2]) -> usize {
 /// `fatigue.dang_van` the surface loads kept for the second pass, 3 f32 per cell per
 /// evaluation (pressure and both tractions).
 pub fn passage_memory(case: &Case) -> f64 {
-    let (Some(spec), Some(kin), Some(m)) =
-        (&case.stress, super::transient::kinematics(case), case.motion.as_ref())
-    else {
+    let (Some(spec), Some(kin), Some(m)) = (
+        &case.stress,
+        super::transient::kinematics(case),
+        case.motion.as_ref(),
+    ) else {
         return 0.0;
     };
     let (nx, ny, dx, dy) = case_cells(case);
@@ -449,7 +505,14 @@ impl PassageRun {
         for p in self.passages.iter_mut() {
             let k = p.body as usize - 1;
             let traction = q.as_ref().map(|q| q[k].as_slice());
-            let kernels = kernels_for(&mut self.kernels, grid, self.poisson[k], &p.z, self.line, budget);
+            let kernels = kernels_for(
+                &mut self.kernels,
+                grid,
+                self.poisson[k],
+                &p.z,
+                self.line,
+                budget,
+            );
             let field = kernels.field(&pressure, traction);
             let t1 = Instant::now();
             p.accumulate(&field, t);
@@ -460,14 +523,22 @@ impl PassageRun {
         self.accumulate_seconds += acc_s;
         if self.passages.iter().any(|p| p.dang_van.is_some()) {
             let f32s = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
-            self.loads.push((t, f32s(&pressure), q.as_ref().map(|q| [f32s(&q[0]), f32s(&q[1])])));
+            self.loads.push((
+                t,
+                f32s(&pressure),
+                q.as_ref().map(|q| [f32s(&q[0]), f32s(&q[1])]),
+            ));
         }
     }
 
     /// The share of [`DEFAULT_CACHE_BYTES`] of each body's kernel spectra: the whole for one
     /// Poisson ratio among the chosen bodies, half each for two.
     fn cache_budget(&self) -> usize {
-        let mut nus: Vec<f64> = self.passages.iter().map(|p| self.poisson[p.body as usize - 1]).collect();
+        let mut nus: Vec<f64> = self
+            .passages
+            .iter()
+            .map(|p| self.poisson[p.body as usize - 1])
+            .collect();
         nus.dedup();
         DEFAULT_CACHE_BYTES / nus.len().max(1)
     }
@@ -487,8 +558,16 @@ impl PassageRun {
             let p: Vec<f64> = p.iter().map(|&v| v as f64).collect();
             for ps in self.passages.iter_mut() {
                 let k = ps.body as usize - 1;
-                let traction: Option<Vec<f64>> = q.as_ref().map(|q| q[k].iter().map(|&v| v as f64).collect());
-                let kernels = kernels_for(&mut self.kernels, grid, self.poisson[k], &ps.z, self.line, budget);
+                let traction: Option<Vec<f64>> =
+                    q.as_ref().map(|q| q[k].iter().map(|&v| v as f64).collect());
+                let kernels = kernels_for(
+                    &mut self.kernels,
+                    grid,
+                    self.poisson[k],
+                    &ps.z,
+                    self.line,
+                    budget,
+                );
                 let field = kernels.field(&p, traction.as_deref());
                 ps.dang_van_pass(&field, *t);
             }
@@ -559,7 +638,11 @@ pub fn passage_figures(run: &PassageRun, half_width: f64) -> Vec<PassageFigures>
 /// each body's figures, the fatigue integral (the sum over the bodies: the contact survives when
 /// both do) and a warning for each maximum on the first layer.
 pub fn summarise(case: &Case, analysis: &StressAnalysis, summary: &mut Summary) {
-    let area = if case.is_infinite_line() { analysis.grid.dx } else { analysis.grid.cell_area() };
+    let area = if case.is_infinite_line() {
+        analysis.grid.dx
+    } else {
+        analysis.grid.cell_area()
+    };
     let mut per_body = Vec::new();
     let mut total = 0.0;
     for b in &analysis.bodies {

@@ -433,7 +433,13 @@ pub(super) fn solve(
         .map(|r| r.step)
         .collect();
     // the last step's figures
-    super::ehl_figures(&mut summary, &grid, &last.fields.pressure, &last.fields.film, ctx.load);
+    super::ehl_figures(
+        &mut summary,
+        &grid,
+        &last.fields.pressure,
+        &last.fields.film,
+        ctx.load,
+    );
     summary.residual =
         (last.residual.is_finite() && last.residual < f64::MAX).then_some(last.residual);
     summary.mass_inflow_kg_s = Some(last.mass.inflow);
@@ -477,7 +483,10 @@ pub(super) fn solve(
         let Some((a, b)) = f.feature.x_span() else {
             continue;
         };
-        let u = case.motion.as_ref().map_or(0.0, |m| if f.body == 1 { m.u1() } else { m.u2() });
+        let u = case
+            .motion
+            .as_ref()
+            .map_or(0.0, |m| if f.body == 1 { m.u1() } else { m.u2() });
         // every surface starts shifted by shift0 (the path form puts features[0] at `from`)
         let s = u * duration;
         let (lo, hi) = (a + kin.shift0 + s.min(0.0), b + kin.shift0 + s.max(0.0));

@@ -6,7 +6,9 @@
 #[inline]
 pub fn von_mises(s: &[f64; 6]) -> f64 {
     let [a, b, c, yz, xz, xy] = *s;
-    (0.5 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2)) + 3.0 * (yz * yz + xz * xz + xy * xy)).sqrt()
+    (0.5 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2))
+        + 3.0 * (yz * yz + xz * xz + xy * xy))
+        .sqrt()
 }
 
 /// Hydrostatic stress (s_xx + s_yy + s_zz) / 3 (Pa).
@@ -60,9 +62,21 @@ mod tests {
         let (ux, uy, uz) = (1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0);
         let (c, s) = (0.7f64.cos(), 0.7f64.sin());
         let r = [
-            [c + ux * ux * (1.0 - c), ux * uy * (1.0 - c) - uz * s, ux * uz * (1.0 - c) + uy * s],
-            [uy * ux * (1.0 - c) + uz * s, c + uy * uy * (1.0 - c), uy * uz * (1.0 - c) - ux * s],
-            [uz * ux * (1.0 - c) - uy * s, uz * uy * (1.0 - c) + ux * s, c + uz * uz * (1.0 - c)],
+            [
+                c + ux * ux * (1.0 - c),
+                ux * uy * (1.0 - c) - uz * s,
+                ux * uz * (1.0 - c) + uy * s,
+            ],
+            [
+                uy * ux * (1.0 - c) + uz * s,
+                c + uy * uy * (1.0 - c),
+                uy * uz * (1.0 - c) - ux * s,
+            ],
+            [
+                uz * ux * (1.0 - c) - uy * s,
+                uz * uy * (1.0 - c) + ux * s,
+                c + uz * uz * (1.0 - c),
+            ],
         ];
         let t = |i: usize, j: usize| (0..3).map(|k| r[i][k] * d[k] * r[j][k]).sum::<f64>();
         let s6 = [t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)];

@@ -109,8 +109,7 @@ pub fn integral(eq: &[f32], z: &[f64], cell_area: f64, params: &Params) -> f64 {
     let dz = layer_thickness(z);
     let mut total = 0.0;
     for (k, slice) in eq.chunks(plane).enumerate() {
-        let weight =
-            cell_area * dz[k] / (z[k] / REFERENCE_DEPTH).powf(params.depth_exponent);
+        let weight = cell_area * dz[k] / (z[k] / REFERENCE_DEPTH).powf(params.depth_exponent);
         let s: f64 = slice
             .iter()
             .map(|&v| {
@@ -150,14 +149,24 @@ mod tests {
     fn zero_below_the_limit_and_power_law_above() {
         let z = [1.0, 2.0];
         let eq = [1.0e9_f32, 2.0e9, 0.5e9, 3.0e9];
-        let p = Params { fatigue_limit: 5e9, ..Params::default() };
+        let p = Params {
+            fatigue_limit: 5e9,
+            ..Params::default()
+        };
         assert_eq!(integral(&eq, &z, 1.0, &p), 0.0);
         // c = 1, h = 0, limit 0: sum of (v / 1 GPa) dV with dz = [1.5, 1.0]
-        let p = Params { stress_exponent: 1.0, ..Params::default() };
+        let p = Params {
+            stress_exponent: 1.0,
+            ..Params::default()
+        };
         let want = 1.5 * 3.0 + 1.0 * 3.5;
         assert!((integral(&eq, &z, 1.0, &p) - want).abs() < 1e-12);
         // h = 1: each layer weighed by (z / 1 mm)^-1
-        let p = Params { stress_exponent: 1.0, depth_exponent: 1.0, ..Params::default() };
+        let p = Params {
+            stress_exponent: 1.0,
+            depth_exponent: 1.0,
+            ..Params::default()
+        };
         let want = 1.5 * 3.0 / 1e3 + 1.0 * 3.5 / 2e3;
         assert!((integral(&eq, &z, 1.0, &p) - want).abs() < 1e-12 * want);
         assert_eq!(life_ratio(2.0, 2.0, 1.1), 1.0);

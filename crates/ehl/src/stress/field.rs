@@ -97,7 +97,11 @@ struct Buffers {
 impl Fft2 {
     fn new(nx: usize, ny: usize) -> Self {
         let px = crate::elastic::operator::fast_len(2 * nx - 1).max(2);
-        let py = if ny == 1 { 1 } else { crate::elastic::operator::fast_len(2 * ny - 1) };
+        let py = if ny == 1 {
+            1
+        } else {
+            crate::elastic::operator::fast_len(2 * ny - 1)
+        };
         let mut rp = RealFftPlanner::<f32>::new();
         let mut cp = FftPlanner::<f32>::new();
         Fft2 {
@@ -129,7 +133,10 @@ impl Fft2 {
 
     fn buffers(&self) -> Buffers {
         let sr = self.r2c.get_scratch_len().max(self.c2r.get_scratch_len());
-        let sc = self.fwd.get_inplace_scratch_len().max(self.inv.get_inplace_scratch_len());
+        let sc = self
+            .fwd
+            .get_inplace_scratch_len()
+            .max(self.inv.get_inplace_scratch_len());
         Buffers {
             real: vec![0.0f32; self.px],
             block: vec![Complex::default(); ROW_BLOCK * self.hx],
@@ -220,7 +227,10 @@ impl Fft2 {
             if r >= ny {
                 return false;
             }
-            row[..nx].iter_mut().zip(&f[r * nx..(r + 1) * nx]).for_each(|(d, v)| *d = *v as f32);
+            row[..nx]
+                .iter_mut()
+                .zip(&f[r * nx..(r + 1) * nx])
+                .for_each(|(d, v)| *d = *v as f32);
             true
         });
         out
@@ -253,7 +263,8 @@ fn imaginary(k: usize) -> bool {
 /// imaginary kernel share one real FFT (of their sum: the real part is the one's, the
 /// imaginary part the other's), the rest go alone.
 fn schedule(slots: &[usize]) -> Vec<(usize, Option<usize>)> {
-    let (im, re): (Vec<usize>, Vec<usize>) = slots.iter().partition(|&&s| imaginary(SLOT_KERNEL[s]));
+    let (im, re): (Vec<usize>, Vec<usize>) =
+        slots.iter().partition(|&&s| imaginary(SLOT_KERNEL[s]));
     let n = re.len().max(im.len());
     (0..n)
         .map(|i| match (re.get(i), im.get(i)) {
@@ -330,7 +341,12 @@ impl StressKernels {
         let kept: Vec<Option<Vec<f32>>> = z[..keep]
             .par_iter()
             .map_init(
-                || (k.fft.buffers(), vec![Complex::default(); k.fft.spectrum_len()]),
+                || {
+                    (
+                        k.fft.buffers(),
+                        vec![Complex::default(); k.fft.spectrum_len()],
+                    )
+                },
                 |(b, work), &depth| {
                     let mut spec = vec![0.0f32; SLOT_KERNEL.len() * k.fft.reduced_len()];
                     k.layer_spectra(depth, &all, b, work, &mut spec);
@@ -347,7 +363,8 @@ impl StressKernels {
     /// Whether these kernels are those of `grid`, `nu`, `z`, `plane_strain`.
     pub fn matches(&self, grid: &Grid, nu: f64, z: &[f64], plane_strain: bool) -> bool {
         let dy = if plane_strain { f64::INFINITY } else { grid.dy };
-        (self.nx, self.ny, self.dx, self.dy, self.nu) == (grid.nx, grid.ny, grid.dx, dy, nu) && self.z == z
+        (self.nx, self.ny, self.dx, self.dy, self.nu) == (grid.nx, grid.ny, grid.dx, dy, nu)
+            && self.z == z
     }
 
     /// Layers whose spectra are kept.
@@ -357,7 +374,11 @@ impl StressKernels {
 
     /// Bytes of the kept spectra.
     pub fn bytes(&self) -> usize {
-        self.cached.iter().flatten().map(|s| s.len() * std::mem::size_of::<f32>()).sum()
+        self.cached
+            .iter()
+            .flatten()
+            .map(|s| s.len() * std::mem::size_of::<f32>())
+            .sum()
     }
 
     /// The depths (m).
@@ -379,7 +400,10 @@ impl StressKernels {
         let (hy, rl) = (self.fft.hy(), self.fft.reduced_len());
         let kernel = LayerKernel::new(nx, ny, self.dx, self.dy, depth, self.nu);
         for (a, pair) in schedule(slots) {
-            let ks: Vec<usize> = std::iter::once(a).chain(pair).map(|s| SLOT_KERNEL[s]).collect();
+            let ks: Vec<usize> = std::iter::once(a)
+                .chain(pair)
+                .map(|s| SLOT_KERNEL[s])
+                .collect();
             self.fft.forward(b, work, |r, row| {
                 let dj = if r < ny {
                     r as isize
@@ -444,14 +468,19 @@ impl StressKernels {
         let z = &self.z;
         let mut components: [Vec<f32>; 6] = std::array::from_fn(|_| vec![0.0f32; z.len() * plane]);
         // one layer per task; each task writes its own slice of every component
-        let mut slices: Vec<Vec<&mut [f32]>> = (0..z.len()).map(|_| Vec::with_capacity(6)).collect();
+        let mut slices: Vec<Vec<&mut [f32]>> =
+            (0..z.len()).map(|_| Vec::with_capacity(6)).collect();
         for comp in components.iter_mut() {
             for (k, s) in comp.chunks_mut(plane).enumerate() {
                 slices[k].push(s);
             }
         }
         // the slots a recomputed layer needs
-        let needed: Vec<usize> = if q_hat.is_some() { (0..SLOT_KERNEL.len()).collect() } else { (0..6).collect() };
+        let needed: Vec<usize> = if q_hat.is_some() {
+            (0..SLOT_KERNEL.len()).collect()
+        } else {
+            (0..6).collect()
+        };
         let (py, hx, hy, rl) = (fft.py, fft.hx, fft.hy(), fft.reduced_len());
         slices
             .par_iter_mut()
@@ -474,7 +503,8 @@ impl StressKernels {
                         }
                     };
                     for (c, dst) in out.iter_mut().enumerate() {
-                        let terms = std::iter::once((c, &p_hat)).chain(q_hat.as_ref().map(|q| (6 + c, q)));
+                        let terms =
+                            std::iter::once((c, &p_hat)).chain(q_hat.as_ref().map(|q| (6 + c, q)));
                         for (n, (k, hat)) in terms.enumerate() {
                             let ks = &spec[slot_of(k) * rl..(slot_of(k) + 1) * rl];
                             let sy = KERNEL_PARITY[k].1 as f32;
@@ -567,12 +597,19 @@ mod tests {
                 (1.0 - (x - 0.1).powi(2) - 0.7 * y * y).max(0.0).sqrt() * (1.0 + 0.3 * x)
             })
             .collect();
-        let q = p.iter().enumerate().map(|(k, v)| v * (0.1 + 0.05 * ((k % 7) as f64 - 3.0))).collect();
+        let q = p
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v * (0.1 + 0.05 * ((k % 7) as f64 - 3.0)))
+            .collect();
         (p, q)
     }
 
     fn largest(f: &StressField) -> f64 {
-        f.components.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs() as f64))
+        f.components
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, v| m.max(v.abs() as f64))
     }
 
     /// The kept spectra give the field of the spectra formed at each evaluation, whatever part
@@ -599,7 +636,10 @@ mod tests {
                         let f = kernels.field(&p, traction);
                         for c in 0..6 {
                             for (a, b) in f.components[c].iter().zip(&reference.components[c]) {
-                                assert!(((a - b).abs() as f64) <= 1e-6 * scale, "component {c}: {a} vs {b}");
+                                assert!(
+                                    ((a - b).abs() as f64) <= 1e-6 * scale,
+                                    "component {c}: {a} vs {b}"
+                                );
                             }
                         }
                     }
@@ -628,14 +668,18 @@ mod tests {
                         for ii in 0..nx {
                             let (di, dj) = (i as isize - ii as isize, j as isize - jj as isize);
                             for (c, v) in s.iter_mut().enumerate() {
-                                *v += k.get(c, di, dj) * p[jj * nx + ii] + k.get(6 + c, di, dj) * q[jj * nx + ii];
+                                *v += k.get(c, di, dj) * p[jj * nx + ii]
+                                    + k.get(6 + c, di, dj) * q[jj * nx + ii];
                             }
                         }
                     }
                     let n = (l * ny + j) * nx + i;
                     for (c, want) in s.iter().enumerate() {
                         let got = f.components[c][n] as f64;
-                        assert!((got - want).abs() < 1e-6 * scale, "c {c} at ({i}, {j}, {l}): {got} vs {want}");
+                        assert!(
+                            (got - want).abs() < 1e-6 * scale,
+                            "c {c} at ({i}, {j}, {l}): {got} vs {want}"
+                        );
                     }
                 }
             }
@@ -648,7 +692,10 @@ mod tests {
     fn pairs_cover_every_slot_once() {
         for slots in [(0..11).collect::<Vec<_>>(), (0..6).collect()] {
             let s = schedule(&slots);
-            let mut seen: Vec<usize> = s.iter().flat_map(|&(a, b)| std::iter::once(a).chain(b)).collect();
+            let mut seen: Vec<usize> = s
+                .iter()
+                .flat_map(|&(a, b)| std::iter::once(a).chain(b))
+                .collect();
             seen.sort();
             assert_eq!(seen, slots);
             for (a, b) in s {

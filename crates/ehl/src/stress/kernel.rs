@@ -92,7 +92,9 @@ const PARITY: [(f64, f64); N_CORNER] = [
 /// The corner functions at (xi, eta, z), z > 0.
 #[inline]
 fn corner_functions(xi: f64, eta: f64, z: f64) -> [f64; N_CORNER] {
-    corners(xi, eta, z, |_, sx2, sy2| ((eta / sx2.sqrt()).asinh(), (xi / sy2.sqrt()).asinh()))
+    corners(xi, eta, z, |_, sx2, sy2| {
+        ((eta / sx2.sqrt()).asinh(), (xi / sy2.sqrt()).asinh())
+    })
 }
 
 /// The corner functions at xi, eta > 0 (the quadrant of the layer tables), given
@@ -102,14 +104,30 @@ fn corner_functions(xi: f64, eta: f64, z: f64) -> [f64; N_CORNER] {
 /// absolute round-off of the ln(rho + z) entry, ~1e-16 of its magnitude). Two logarithms in
 /// place of two asinh (each a hypot and a ln_1p): 40 % of the table time.
 #[inline]
-fn corner_functions_quadrant(xi: f64, eta: f64, z: f64, half_ln_sx2: f64, half_ln_sy2: f64) -> [f64; N_CORNER] {
-    corners(xi, eta, z, |rho, _, _| ((eta + rho).ln() - half_ln_sx2, (xi + rho).ln() - half_ln_sy2))
+fn corner_functions_quadrant(
+    xi: f64,
+    eta: f64,
+    z: f64,
+    half_ln_sx2: f64,
+    half_ln_sy2: f64,
+) -> [f64; N_CORNER] {
+    corners(xi, eta, z, |rho, _, _| {
+        (
+            (eta + rho).ln() - half_ln_sx2,
+            (xi + rho).ln() - half_ln_sy2,
+        )
+    })
 }
 
 /// The corner functions, with `xzz_yzz(rho, s_x^2, s_y^2)` giving asinh(eta / s_x) and
 /// asinh(xi / s_y).
 #[inline(always)]
-fn corners(xi: f64, eta: f64, z: f64, xzz_yzz: impl FnOnce(f64, f64, f64) -> (f64, f64)) -> [f64; N_CORNER] {
+fn corners(
+    xi: f64,
+    eta: f64,
+    z: f64,
+    xzz_yzz: impl FnOnce(f64, f64, f64) -> (f64, f64),
+) -> [f64; N_CORNER] {
     let (x2, e2, z2) = (xi * xi, eta * eta, z * z);
     let rho = (x2 + e2 + z2).sqrt();
     let rz = rho + z;
@@ -119,7 +137,13 @@ fn corners(xi: f64, eta: f64, z: f64, xzz_yzz: impl FnOnce(f64, f64, f64) -> (f6
     let xe = xi * eta;
     let (xzz, yzz) = xzz_yzz(rho, sx2, sy2);
     // both arctangents vanish with xi eta (their denominators only at xi = eta = 0)
-    let atan_over = |den: f64| if xe == 0.0 { 0.0 } else { (xe * rho_minus_z / den).atan() };
+    let atan_over = |den: f64| {
+        if xe == 0.0 {
+            0.0
+        } else {
+            (xe * rho_minus_z / den).atan()
+        }
+    };
     [
         atan_over(x2 * rho + z * e2),
         atan_over(e2 * rho + z * x2),
@@ -315,7 +339,8 @@ mod tests {
     /// Holl's vertical stress under the corner of a uniformly loaded l x b rectangle.
     fn holl(l: f64, b: f64, z: f64) -> f64 {
         let r = (l * l + b * b + z * z).sqrt();
-        -((l * b / (z * r)).atan() + l * b * z / r * (1.0 / (l * l + z * z) + 1.0 / (b * b + z * z)))
+        -((l * b / (z * r)).atan()
+            + l * b * z / r * (1.0 / (l * l + z * z) + 1.0 / (b * b + z * z)))
             / (2.0 * PI)
     }
 
@@ -339,8 +364,16 @@ mod tests {
             let scale = bn.iter().chain(&bt).fold(0.0_f64, |m, v| m.max(v.abs()));
             for k in 0..6 {
                 let (gn, gt) = (n[k] / (4.0 * h * h), t[k] / (4.0 * h * h));
-                assert!((gn - bn[k]).abs() < 1e-5 * scale, "normal {k}: {gn} vs {}", bn[k]);
-                assert!((gt - bt[k]).abs() < 1e-5 * scale, "tangential {k}: {gt} vs {}", bt[k]);
+                assert!(
+                    (gn - bn[k]).abs() < 1e-5 * scale,
+                    "normal {k}: {gn} vs {}",
+                    bn[k]
+                );
+                assert!(
+                    (gt - bt[k]).abs() < 1e-5 * scale,
+                    "tangential {k}: {gt} vs {}",
+                    bt[k]
+                );
             }
         }
     }
@@ -356,7 +389,12 @@ mod tests {
         assert!((t[4] + 1.0).abs() < 1e-6 && t[2].abs() < 1e-6 && t[3].abs() < 1e-6);
         let (n, t) = rectangle(1.7, -0.9, z, rect, 0.3);
         for k in [2, 3, 4] {
-            assert!(n[k].abs() < 1e-6 && t[k].abs() < 1e-6, "{k}: {} {}", n[k], t[k]);
+            assert!(
+                n[k].abs() < 1e-6 && t[k].abs() < 1e-6,
+                "{k}: {} {}",
+                n[k],
+                t[k]
+            );
         }
         let (n, t) = strip(0.3, z, -1.0, 1.0, 0.3);
         assert!((n[2] + 1.0).abs() < 1e-6 && n[4].abs() < 1e-6);
@@ -372,7 +410,11 @@ mod tests {
             for which in 0..2 {
                 let s = |x: f64, y: f64, z: f64| {
                     let (n, t) = rectangle(x, y, z, rect, 0.27);
-                    if which == 0 { n } else { t }
+                    if which == 0 {
+                        n
+                    } else {
+                        t
+                    }
                 };
                 let d = |k: usize, axis: usize| {
                     let mut p = [x, y, z];
@@ -402,11 +444,21 @@ mod tests {
             let (n3, t3) = rectangle(x, 0.0, z, [-1.0, 1.0, -1000.0, 1000.0], nu);
             let (n2, t2) = strip(x, z, -1.0, 1.0, nu);
             for k in 0..6 {
-                assert!((n3[k] - n2[k]).abs() < 2e-3, "normal {k}: {} vs {}", n3[k], n2[k]);
+                assert!(
+                    (n3[k] - n2[k]).abs() < 2e-3,
+                    "normal {k}: {} vs {}",
+                    n3[k],
+                    n2[k]
+                );
                 // sigma_xx of a tangential strip load has a logarithmic far field (the strip's
                 // net force): a finite rectangle has it too, so compare sigma_xx at 1e-2
                 let tol = if k == 0 || k == 1 { 1e-2 } else { 2e-3 };
-                assert!((t3[k] - t2[k]).abs() < tol, "tangential {k}: {} vs {}", t3[k], t2[k]);
+                assert!(
+                    (t3[k] - t2[k]).abs() < tol,
+                    "tangential {k}: {} vs {}",
+                    t3[k],
+                    t2[k]
+                );
             }
         }
     }
@@ -435,7 +487,10 @@ mod tests {
                 let (n, t) = rectangle(x, y, z, [-0.5 * dx, 0.5 * dx, -0.5 * dy, 0.5 * dy], nu);
                 for c in 0..6 {
                     assert!((k.get(c, di, dj) - n[c]).abs() < 1e-13, "n{c} {di} {dj}");
-                    assert!((k.get(6 + c, di, dj) - t[c]).abs() < 1e-13, "t{c} {di} {dj}");
+                    assert!(
+                        (k.get(6 + c, di, dj) - t[c]).abs() < 1e-13,
+                        "t{c} {di} {dj}"
+                    );
                 }
             }
         }
@@ -465,7 +520,12 @@ mod tests {
                 let b = corner_functions(xi, eta, z);
                 for f in 0..N_CORNER {
                     let tol = 4e-16 * (1.0 + b[f].abs() + (xi + eta + z).ln().abs());
-                    assert!((a[f] - b[f]).abs() <= tol, "{f} at ({xi}, {eta}): {} vs {}", a[f], b[f]);
+                    assert!(
+                        (a[f] - b[f]).abs() <= tol,
+                        "{f} at ({xi}, {eta}): {} vs {}",
+                        a[f],
+                        b[f]
+                    );
                 }
             }
         }

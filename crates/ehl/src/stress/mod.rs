@@ -104,7 +104,10 @@ impl BodyStress {
             })
             .unzip();
         let peak = |v: &dyn Fn(usize) -> f64| {
-            let mut best = Peak { value: f64::NEG_INFINITY, ..Peak::default() };
+            let mut best = Peak {
+                value: f64::NEG_INFINITY,
+                ..Peak::default()
+            };
             for k in 0..n {
                 let x = v(k);
                 if x > best.value {
@@ -147,6 +150,11 @@ impl BodyStress {
     /// The Ioannides-Harris integral of this body's field ([`fatigue::integral`]); `cell_area`
     /// in m^2 (a line contact: dx times 1 m).
     pub fn fatigue_integral(&self, cell_area: f64, params: &fatigue::Params) -> f64 {
-        fatigue::integral(&self.equivalent(params.criterion), &self.field.z, cell_area, params)
+        fatigue::integral(
+            &self.equivalent(params.criterion),
+            &self.field.z,
+            cell_area,
+            params,
+        )
     }
 }

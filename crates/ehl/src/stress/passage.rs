@@ -79,7 +79,10 @@ impl Default for DangVan {
     /// contract (interface.md), an order of magnitude for hardened bearing steel, not a
     /// calibration; set them for the steel at hand.
     fn default() -> Self {
-        DangVan { alpha: 0.3, beta: 4.5e8 }
+        DangVan {
+            alpha: 0.3,
+            beta: 4.5e8,
+        }
     }
 }
 
@@ -116,7 +119,12 @@ const DV0: Dv = Dv {
 /// Bytes of the accumulators of one body: `points = nx_body * ny * layers`, with or without
 /// Dang Van (3 or 3 + 13 f32 per point).
 pub fn bytes(points: usize, dang_van: bool) -> f64 {
-    let per = std::mem::size_of::<Base>() + if dang_van { std::mem::size_of::<Dv>() } else { 0 };
+    let per = std::mem::size_of::<Base>()
+        + if dang_van {
+            std::mem::size_of::<Dv>()
+        } else {
+            0
+        };
     (points * per) as f64
 }
 
@@ -167,9 +175,20 @@ pub struct PassageMaps {
 impl Passage {
     /// Accumulators for body `body` moving at `speed` (m/s) over `grid` during `duration` (s),
     /// on the window layers `z` (m).
-    pub fn new(body: u8, grid: &Grid, speed: f64, duration: f64, z: &[f64], dang_van: Option<DangVan>) -> Self {
+    pub fn new(
+        body: u8,
+        grid: &Grid,
+        speed: f64,
+        duration: f64,
+        z: &[f64],
+        dang_van: Option<DangVan>,
+    ) -> Self {
         let nx_body = body_columns(grid.nx, grid.dx, speed, duration);
-        let offset = if speed > 0.0 { -((nx_body - grid.nx) as isize) } else { 0 };
+        let offset = if speed > 0.0 {
+            -((nx_body - grid.nx) as isize)
+        } else {
+            0
+        };
         let points = nx_body * grid.ny * z.len();
         Passage {
             body,
@@ -180,7 +199,11 @@ impl Passage {
             nx_body,
             offset,
             base: vec![BASE0; points],
-            dv: if dang_van.is_some() { vec![DV0; points] } else { Vec::new() },
+            dv: if dang_van.is_some() {
+                vec![DV0; points]
+            } else {
+                Vec::new()
+            },
             contact_span: vec![[f64::NAN; 2]; nx_body],
             evaluations: 0,
         }
@@ -219,7 +242,11 @@ impl Passage {
     /// `t` (s) to the von Mises and tau_xz maps and, with Dang Van, to the deviator's extremes.
     pub fn accumulate(&mut self, field: &StressField, t: f64) {
         let (nx, ny, nxb) = (self.grid.nx, self.grid.ny, self.nx_body);
-        assert_eq!((field.nx, field.ny, field.z.len()), (nx, ny, self.z.len()), "passage field shape");
+        assert_eq!(
+            (field.nx, field.ny, field.z.len()),
+            (nx, ny, self.z.len()),
+            "passage field shape"
+        );
         let Some((c, lo, hi)) = self.columns_at(t) else {
             return;
         };
@@ -278,7 +305,11 @@ impl Passage {
             return;
         };
         let (nx, ny, nxb) = (self.grid.nx, self.grid.ny, self.nx_body);
-        assert_eq!((field.nx, field.ny, field.z.len()), (nx, ny, self.z.len()), "passage field shape");
+        assert_eq!(
+            (field.nx, field.ny, field.z.len()),
+            (nx, ny, self.z.len()),
+            "passage field shape"
+        );
         let Some((c, lo, hi)) = self.columns_at(t) else {
             return;
         };
@@ -291,7 +322,8 @@ impl Passage {
                 for m in lo..=hi {
                     let s = sample(comps, nx, row, m as f64 + c);
                     let d = &mut dv[m];
-                    let mid: [f64; 6] = std::array::from_fn(|q| 0.5 * (d.dev_max[q] as f64 + d.dev_min[q] as f64));
+                    let mid: [f64; 6] =
+                        std::array::from_fn(|q| 0.5 * (d.dev_max[q] as f64 + d.dev_min[q] as f64));
                     let v = indicator(&s, &mid, &p) as f32;
                     d.dv = d.dv.max(v);
                 }
@@ -302,7 +334,11 @@ impl Passage {
     pub fn maps(&self) -> PassageMaps {
         let finite = |v: f32| if v.is_finite() { v } else { f32::NAN };
         let max_von_mises = self.base.iter().map(|b| finite(b.vm_max)).collect();
-        let tau_xz_range = self.base.iter().map(|b| finite(b.txz_max - b.txz_min)).collect();
+        let tau_xz_range = self
+            .base
+            .iter()
+            .map(|b| finite(b.txz_max - b.txz_min))
+            .collect();
         let dang_van = self
             .dang_van
             .map(|_| self.dv.iter().map(|d| finite(d.dv)).collect());
@@ -359,7 +395,10 @@ pub fn dang_van_of_history(history: &[[f64; 6]], p: &DangVan) -> f64 {
         }
     }
     let mid: [f64; 6] = std::array::from_fn(|q| 0.5 * (lo[q] + hi[q]));
-    history.iter().map(|s| indicator(s, &mid, p)).fold(f64::NEG_INFINITY, f64::max)
+    history
+        .iter()
+        .map(|s| indicator(s, &mid, p))
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 #[cfg(test)]
@@ -393,7 +432,10 @@ mod tests {
     #[test]
     fn reversed_shear_gives_tau_a_over_beta() {
         let tau_a = 3.0e8;
-        let p = DangVan { alpha: 0.3, beta: 4.5e8 };
+        let p = DangVan {
+            alpha: 0.3,
+            beta: 4.5e8,
+        };
         let history: Vec<[f64; 6]> = (0..=40)
             .map(|n| {
                 let w = 2.0 * std::f64::consts::PI * n as f64 / 40.0;
@@ -413,7 +455,10 @@ mod tests {
     /// at the peak, and the two-pass accumulator agrees with the whole history.
     #[test]
     fn hydrostatic_term_has_the_criterion_sign() {
-        let p = DangVan { alpha: 0.5, beta: 1.0 };
+        let p = DangVan {
+            alpha: 0.5,
+            beta: 1.0,
+        };
         // s = -q (1, 1, 3)/... with q from 0 to 1: mean -5q/3, deviator q(2/3, 2/3, -4/3)
         let history: Vec<[f64; 6]> = (0..=10)
             .map(|n| {
@@ -469,7 +514,11 @@ mod tests {
                 c[q] += w * (far[q] - c[q]);
             }
         }
-        let r = points.iter().map(|p| norm2(p, &c)).fold(0.0f64, f64::max).sqrt();
+        let r = points
+            .iter()
+            .map(|p| norm2(p, &c))
+            .fold(0.0f64, f64::max)
+            .sqrt();
         (c, r)
     }
 
@@ -502,8 +551,14 @@ mod tests {
             })
             .collect();
         let (c, r) = enclosing_ball(&circle);
-        assert!(c.iter().all(|v| v.abs() < 1e-3) && (r - 2f64.sqrt()).abs() < 1e-3, "{c:?} {r}");
-        let segment = [[1.0, -0.5, -0.5, 0.0, 0.0, 0.0], [-1.0, 0.5, 0.5, 0.0, 2.0, 0.0]];
+        assert!(
+            c.iter().all(|v| v.abs() < 1e-3) && (r - 2f64.sqrt()).abs() < 1e-3,
+            "{c:?} {r}"
+        );
+        let segment = [
+            [1.0, -0.5, -0.5, 0.0, 0.0, 0.0],
+            [-1.0, 0.5, 0.5, 0.0, 2.0, 0.0],
+        ];
         let (c, _) = enclosing_ball(&segment);
         let mid = [0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
         assert!(norm2(&c, &mid).sqrt() < 1e-3, "{c:?}");
@@ -530,8 +585,13 @@ mod tests {
                     .fold(f64::NEG_INFINITY, f64::max);
                 let rel = (boxed - ball) / ball;
                 let pct = 100.0 * rel;
-                eprintln!("mu {mu}, z {z} b: DV box {boxed:.4}, hypersphere {ball:.4} ({pct:+.2} %)");
-                assert!(rel > -0.01 && rel < 0.12, "mu {mu}, z {z}: {boxed} against {ball}");
+                eprintln!(
+                    "mu {mu}, z {z} b: DV box {boxed:.4}, hypersphere {ball:.4} ({pct:+.2} %)"
+                );
+                assert!(
+                    rel > -0.01 && rel < 0.12,
+                    "mu {mu}, z {z}: {boxed} against {ball}"
+                );
             }
         }
     }

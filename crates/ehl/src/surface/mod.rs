@@ -409,8 +409,14 @@ impl Feature {
             .copies()
             .iter()
             .map(|&(ox, oy)| if axis == 0 { ox } else { oy })
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), o| (a.min(o), b.max(o)));
-        let c = if axis == 0 { self.centre.0 } else { self.centre.1 };
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), o| {
+                (a.min(o), b.max(o))
+            });
+        let c = if axis == 0 {
+            self.centre.0
+        } else {
+            self.centre.1
+        };
         Some((c + lo - half, c + hi + half))
     }
 
