@@ -101,7 +101,11 @@ fn to_toml(v: &Bound<'_, PyAny>, key: &str) -> Result<toml::Value, (String, Stri
 const MAX_NESTING: usize = 64;
 
 /// [`to_toml`] at nesting level `depth`.
-fn to_toml_at(v: &Bound<'_, PyAny>, key: &str, depth: usize) -> Result<toml::Value, (String, String)> {
+fn to_toml_at(
+    v: &Bound<'_, PyAny>,
+    key: &str,
+    depth: usize,
+) -> Result<toml::Value, (String, String)> {
     use toml::Value;
     let fail = |m: String| (key.to_string(), m);
     if depth > MAX_NESTING {
@@ -674,7 +678,10 @@ impl PyCase {
             parts.push(format!("transient ({} steps)", k.steps));
         }
         if c.is_infinite_line() {
-            parts.push(format!("load {}", si(c.load.force_per_length, 1e-3, "kN/m", 1)));
+            parts.push(format!(
+                "load {}",
+                si(c.load.force_per_length, 1e-3, "kN/m", 1)
+            ));
         } else {
             parts.push(format!("load {}", si(c.load.force, 1.0, "N", 1)));
         }
@@ -700,8 +707,7 @@ impl PyCase {
 /// A TOML key, quoted when it is not a bare key.
 fn toml_key(k: &str) -> String {
     if !k.is_empty()
-        && k
-            .chars()
+        && k.chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
     {
         k.to_string()
@@ -720,10 +726,7 @@ struct PySolution {
 }
 
 /// A read-only NumPy view (ny, nx) of `data`, owned by `owner` (no copy).
-fn view<'py>(
-    owner: &Bound<'py, PySolution>,
-    data: &[f64],
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+fn view<'py>(owner: &Bound<'py, PySolution>, data: &[f64]) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let g = owner.get().sol.grid;
     let v = ArrayView2::from_shape((g.ny, g.nx), data)
         .map_err(|e| PyTypeError::new_err(format!("field of the wrong size: {e}")))?;
@@ -745,10 +748,7 @@ fn optional_view<'py>(
 
 /// Columns of a list of serialisable records as NumPy arrays: bool columns as bool, whole
 /// numbers as int64, others as float64 (null as NaN).
-fn columns<'py, T: serde::Serialize>(
-    py: Python<'py>,
-    rows: &[T],
-) -> PyResult<Bound<'py, PyDict>> {
+fn columns<'py, T: serde::Serialize>(py: Python<'py>, rows: &[T]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let values: Vec<serde_json::Value> = rows
         .iter()
@@ -769,10 +769,7 @@ fn columns<'py, T: serde::Serialize>(
             let i: Vec<i64> = col.iter().map(|v| v.as_i64().unwrap_or(0)).collect();
             d.set_item(key, PyArray1::from_vec(py, i))?;
         } else {
-            let f: Vec<f64> = col
-                .iter()
-                .map(|v| v.as_f64().unwrap_or(f64::NAN))
-                .collect();
+            let f: Vec<f64> = col.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect();
             d.set_item(key, PyArray1::from_vec(py, f))?;
         }
     }
@@ -786,8 +783,8 @@ impl PySolution {
     /// resolved case with every default).
     #[getter]
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Py<PyAny>> {
-        let text = ehl::output::summary::to_json(&self.case.case, &self.sol)
-            .map_err(|e| py_err(py, e))?;
+        let text =
+            ehl::output::summary::to_json(&self.case.case, &self.sol).map_err(|e| py_err(py, e))?;
         let v: serde_json::Value = serde_json::from_str(&text)
             .map_err(|e| PyTypeError::new_err(format!("summary: {e}")))?;
         from_json(py, &v)
@@ -868,7 +865,10 @@ impl PySolution {
         d.set_item("surface_1", view(slf, &t.surface_1)?)?;
         d.set_item("surface_2", view(slf, &t.surface_2)?)?;
         let nx = sol.grid.nx;
-        for (name, v) in [("film_section", &t.film_section), ("section_z", &t.section_z)] {
+        for (name, v) in [
+            ("film_section", &t.film_section),
+            ("section_z", &t.section_z),
+        ] {
             let a = PyArray1::from_slice(py, v).reshape([t.nz, nx])?;
             d.set_item(name, a)?;
         }
@@ -893,7 +893,11 @@ impl PySolution {
         let y: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
         d.set_item("x", PyArray1::from_vec(py, x))?;
         d.set_item("y", PyArray1::from_vec(py, y))?;
-        let z = a.bodies.first().map(|b| b.field.z.clone()).unwrap_or_default();
+        let z = a
+            .bodies
+            .first()
+            .map(|b| b.field.z.clone())
+            .unwrap_or_default();
         let nz = z.len();
         d.set_item("z", PyArray1::from_vec(py, z))?;
         for b in &a.bodies {
@@ -1134,7 +1138,12 @@ fn _solve(
                 }));
                 let _ = tx.send(r);
             })
-            .map_err(|e| py_err(py, ehl::Error::Solver(format!("cannot start a thread: {e}"))))?;
+            .map_err(|e| {
+                py_err(
+                    py,
+                    ehl::Error::Solver(format!("cannot start a thread: {e}")),
+                )
+            })?;
         let stop = |e: PyErr| -> PyResult<_> {
             token.cancel();
             let _ = py.detach(|| recv(None));
@@ -1172,7 +1181,9 @@ fn _solve(
                 .unwrap_or_else(|| "unknown".into());
             return Err(py_err(
                 py,
-                ehl::Error::Solver(format!("internal error (a bug in ehl, please report it): {what}")),
+                ehl::Error::Solver(format!(
+                    "internal error (a bug in ehl, please report it): {what}"
+                )),
             ));
         }
     };
