@@ -72,8 +72,9 @@ fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureField
             .map(|x| x - t.inlet)
             .collect()
     };
-    // (the maximum across z, wider and drawn first, shows on both sides of the mid-film line
-    // where the two coincide: the hottest point of a symmetric film is its middle)
+    // (the maximum across z, wider and drawn first, shows on both sides of the line it
+    // coincides with: the mid-film where the film is hottest in its middle, a surface's where
+    // the heat flows into the film from that body, e.g. the glass disc under a ball)
     let series = [
         ("film, maximum across z", row(&t.max_film), RED, 5),
         ("film, mid-film", row(&t.mid_film), MAGENTA, 2),
