@@ -161,12 +161,7 @@ fn films_against_pan_hamrock() {
         let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
         assert!(res.converged, "M {m} L {l}: {}", res.termination);
         let (w, u, g) = groups(&c);
-        let hmin = res
-            .fields
-            .film
-            .iter()
-            .cloned()
-            .fold(f64::INFINITY, f64::min);
+        let hmin = thinnest(&res.fields.film);
         let rmin = hmin / (ehl::reference::film::pan_hamrock_min(w, u, g) * c.r);
         let rc = res.fields.film[centre_index(&grid)]
             / (ehl::reference::film::pan_hamrock_central(w, u, g) * c.r);
@@ -201,12 +196,7 @@ fn grid_convergence() {
             t.elapsed().as_secs_f64()
         );
         assert!(res.converged, "nx {nx}: {}", res.termination);
-        let hmin = res
-            .fields
-            .film
-            .iter()
-            .cloned()
-            .fold(f64::INFINITY, f64::min);
+        let hmin = thinnest(&res.fields.film);
         // the centre value by linear interpolation between the two cells around x = 0
         let i = (0..grid.nx).find(|&i| grid.x(i) >= 0.0).unwrap();
         let t = -grid.x(i - 1) / grid.dx;

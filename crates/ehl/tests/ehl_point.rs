@@ -68,12 +68,7 @@ fn ball_on_glass_against_ehl_fbns() {
     assert!(res.converged, "{}", res.termination);
     let kc = grid.idx(grid.nx / 2, grid.ny / 2);
     let hc = res.fields.film[kc];
-    let hmin = res
-        .fields
-        .film
-        .iter()
-        .cloned()
-        .fold(f64::INFINITY, f64::min);
+    let hmin = thinnest(&res.fields.film);
     let pmax = res.fields.pressure.iter().cloned().fold(0.0, f64::max);
     println!(
         "a = {:.1} um: h_c {:.1} nm (225.8), h_min {:.1} nm (125.5), p_max {:.4} GPa (0.388)",
@@ -106,12 +101,7 @@ fn ball_against_hamrock_dowson() {
     let hc_ref = ehl::reference::film::hamrock_dowson_central(w, u, g, 1.0) * r;
     let hm_ref = ehl::reference::film::hamrock_dowson_min(w, u, g, 1.0) * r;
     let hc = res.fields.film[grid.idx(grid.nx / 2, grid.ny / 2)];
-    let hmin = res
-        .fields
-        .film
-        .iter()
-        .cloned()
-        .fold(f64::INFINITY, f64::min);
+    let hmin = thinnest(&res.fields.film);
     println!(
         "h_c {:.1} nm vs HD {:.1}; h_min {:.1} nm vs HD {:.1}",
         hc * 1e9,

@@ -188,6 +188,12 @@ pub fn moes_line_central(m: f64, l: f64) -> f64 {
     .powf(1.0 / s)
 }
 
+/// The thinnest film of a solution's film field (m; infinite cells, where there is no
+/// material, never win).
+pub fn thinnest(film: &[f64]) -> f64 {
+    film.iter().copied().fold(f64::INFINITY, f64::min)
+}
+
 /// Pan & Hamrock (1989) line contact: (H_min, H_c) = (h/R) for W = w'/(E'R), U, G
 /// (fit to Roelands viscosity and Dowson-Higginson density).
 pub fn pan_hamrock(w: f64, u: f64, g: f64) -> (f64, f64) {
