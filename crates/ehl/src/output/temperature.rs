@@ -213,7 +213,7 @@ fn write_png(path: &Path, case: &Case, solution: &Solution, t: &TemperatureField
                 .legend(move |(x, y)| {
                     PathElement::new(
                         vec![(x, y), (x + 20, y)],
-                        ShapeStyle::from(color).stroke_width(2),
+                        ShapeStyle::from(color).stroke_width(*width),
                     )
                 });
         }
