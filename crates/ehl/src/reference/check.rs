@@ -600,12 +600,14 @@ impl fmt::Display for CheckReport {
                 fixed(t.murch_wilson, 3),
                 "",
             )?;
-            row(
-                f,
-                "film reduction, Gupta et al. (this SRR)",
-                fixed(t.gupta, 3),
-                "",
-            )?;
+            // the fit's ratio of two powers of L has no value at an infinite L (an absurd
+            // viscosity-temperature coefficient): said, not printed as NaN
+            let gupta = if t.gupta.is_finite() {
+                fixed(t.gupta, 3)
+            } else {
+                "n/a (L not finite)".to_string()
+            };
+            row(f, "film reduction, Gupta et al. (this SRR)", gupta, "")?;
             row(
                 f,
                 "Peclet numbers u b/(2 kappa) of body 1, 2",
