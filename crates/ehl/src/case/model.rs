@@ -346,4 +346,8 @@ pub struct ThermalSpec {
     /// v dT/dy ([`crate::thermal::ContactOptions::side_flow`]); false keeps the grid lines
     /// independent
     pub side_flow: bool,
+    /// `coupled_newton` (default true): a line contact whose fixed point has not settled
+    /// after a few outer iterations is handed to Newton's method on the coupled problem
+    /// ([`crate::ehl::thermal::ThermalParams::coupled_newton`]); false: the fixed point alone
+    pub coupled_newton: bool,
 }

@@ -2286,6 +2286,7 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
         .count("max_iterations", "outer iterations", 1)?
         .unwrap_or(defaults.max_outer);
     let side_flow = s.boolean("side_flow")?.unwrap_or(true);
+    let coupled_newton = s.boolean("coupled_newton")?.unwrap_or(true);
     Ok(Some(ThermalSpec {
         lubricant: spec,
         bodies,
@@ -2293,6 +2294,7 @@ fn thermal(top: &Sec, lub: &mut Lubricant, tables: RheologyTables) -> R<Option<T
         film_tolerance,
         max_iterations,
         side_flow,
+        coupled_newton,
     }))
 }
 

@@ -129,6 +129,7 @@ const OTHER_KEYS: &[&str] = &[
     "thermal.film_tolerance",
     "thermal.max_iterations",
     "thermal.side_flow",
+    "thermal.coupled_newton",
 ];
 
 /// Every valid key of a case file, in schema form (`features[]` for array elements).

@@ -31,6 +31,7 @@
 
 mod system;
 pub mod thermal;
+mod thermal_newton;
 pub mod transient;
 
 use crate::case::Lubricant;

@@ -78,7 +78,8 @@ pub fn solve(
 }
 
 /// The thermal fixed point's controls for `case`: the defaults with `[thermal]`'s
-/// `tolerance`, `film_tolerance` (also the factors' residual) and `max_iterations`.
+/// `tolerance`, `film_tolerance` (also the factors' residual), `max_iterations` and
+/// `coupled_newton`.
 pub fn params_for(case: &Case) -> ThermalParams {
     let mut p = ThermalParams::default();
     if let Some(t) = &case.thermal {
@@ -86,6 +87,7 @@ pub fn params_for(case: &Case) -> ThermalParams {
         p.film_tolerance = t.film_tolerance;
         p.factor_tolerance = t.film_tolerance;
         p.max_outer = t.max_iterations;
+        p.coupled_newton = t.coupled_newton;
     }
     p
 }
@@ -113,6 +115,9 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
         mu,
         summary,
     );
+    if case.thermal.as_ref().is_some_and(|t| t.coupled_newton) && run.contact.grid().ny == 1 {
+        summary.thermal_newton_steps = Some(run.result.coupled_newton_steps);
+    }
     // a converged solution whose balance stays open: said (a failed one says why it failed)
     if summary.converged {
         let err = run.contact.heat().balance_error();

@@ -43,6 +43,9 @@ use crate::lubricant::temperature::ThermalLaws;
 use crate::lubricant::Rheology;
 use crate::{Error, Result};
 
+mod coupled;
+pub(crate) use coupled::CoupledFrame;
+
 impl FilmLaws for ThermalLaws {
     fn viscosity(&self, p: f64, t: f64) -> f64 {
         ThermalLaws::viscosity(self, p, t)
@@ -102,6 +105,14 @@ fn unlimited(r: Rheology) -> Rheology {
 /// A grid line's film starts at its first cell whose film is at most this many times the
 /// line's thinnest (upstream the oil is taken at the inlet temperature; see `update`).
 pub const INLET_FILM_RATIO: f64 = 20.0;
+
+/// A grid line's film start moves downstream only when the film at its last start has grown
+/// past [`INLET_FILM_RATIO`] by more than this fraction (upstream it moves freely): a
+/// hysteresis. Without it the start of the Table 3.7 line at SRR 1 and L = 9.5 flipped
+/// between two cells from one outer iteration to the next (the film at the first just below
+/// the ratio with the film started at the second, just above it with the film started
+/// there), and the coupled solution of each start gave the other.
+pub const INLET_FILM_HYSTERESIS: f64 = 0.03;
 
 /// [`ThermalContact::inner_residual`] takes the film's own residual over the cells whose film
 /// is at most this many times its row's thinnest: the inlet that sets the film thickness, but
@@ -490,10 +501,18 @@ impl ThermalContact {
                     .filter(|&k| active[k] && h[k].is_finite())
                     .map(|k| hh[k])
                     .fold(f64::INFINITY, f64::min);
-                row.clone()
+                let rule = row
+                    .clone()
                     .find(|&k| hh[k] <= INLET_FILM_RATIO * thin)
-                    .map_or(len[j], |k| k - j * nx)
-                    .min(len[j].saturating_sub(1))
+                    .map_or(len[j], |k| k - j * nx);
+                // the last start, while the film there is within the hysteresis
+                let last = self.start[j];
+                let keep = self.lines[j].is_some()
+                    && last < rule
+                    && last < len[j]
+                    && active[j * nx + last]
+                    && hh[j * nx + last] <= INLET_FILM_RATIO * (1.0 + INLET_FILM_HYSTERESIS) * thin;
+                (if keep { last } else { rule }).min(len[j].saturating_sub(1))
             })
             .collect();
         let wet: Vec<bool> = (0..n)
@@ -924,15 +943,40 @@ impl ThermalContact {
         flow: &mut [f64],
         couette: &mut [f64],
     ) {
+        self.factors_of(
+            p,
+            active,
+            |k| {
+                if self.active.get(k).copied().unwrap_or(false) {
+                    self.profile(k)
+                } else {
+                    None
+                }
+            },
+            flow,
+            couette,
+        );
+    }
+
+    /// [`ThermalContact::reynolds_factors`] of the profiles `profile_of` gives per cell (None:
+    /// no film solved there).
+    fn factors_of<'a>(
+        &self,
+        p: &[f64],
+        active: &[bool],
+        profile_of: impl Fn(usize) -> Option<&'a FilmProfile>,
+        flow: &mut [f64],
+        couette: &mut [f64],
+    ) {
         let t0 = self.t0();
         let ue = 0.5 * (self.u1 + self.u2);
         for k in 0..self.grid.len() {
             flow[k] = 1.0;
             couette[k] = 1.0;
-            if !(active[k] && self.active.get(k).copied().unwrap_or(false)) {
+            if !active[k] {
                 continue;
             }
-            let Some(pr) = self.profile(k) else { continue };
+            let Some(pr) = profile_of(k) else { continue };
             let pk = p[k].max(0.0);
             let rho = self.laws.density(pk, t0);
             let eta = self.laws.viscosity(pk, t0);
@@ -953,7 +997,7 @@ impl ThermalContact {
             let Some(last) = row
                 .clone()
                 .rev()
-                .find(|&k| active[k] && self.profile(k).is_some())
+                .find(|&k| active[k] && profile_of(k).is_some())
             else {
                 continue;
             };
