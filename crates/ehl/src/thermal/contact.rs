@@ -106,13 +106,14 @@ fn unlimited(r: Rheology) -> Rheology {
 /// line's thinnest (upstream the oil is taken at the inlet temperature; see `update`).
 pub const INLET_FILM_RATIO: f64 = 20.0;
 
-/// A grid line's film start moves downstream only when the film at its last start has grown
-/// past [`INLET_FILM_RATIO`] by more than this fraction (upstream it moves freely): a
-/// hysteresis. Without it the start of the Table 3.7 line at SRR 1 and L = 9.5 flipped
-/// between two cells from one outer iteration to the next (the film at the first just below
-/// the ratio with the film started at the second, just above it with the film started
-/// there), and the coupled solution of each start gave the other.
-pub const INLET_FILM_HYSTERESIS: f64 = 0.03;
+/// With [`ContactOptions::inlet_hysteresis`], a grid line's film start moves downstream only
+/// when the film at its last start has grown past [`INLET_FILM_RATIO`] by more than this
+/// fraction (upstream it moves freely). Without it the start of the Table 3.7 line at SRR 1
+/// and L = 9.5 flipped between two cells from one outer iteration to the next once Newton's
+/// method on the coupled problem (which freezes the film's extent) had taken over: the film
+/// at the first cell just below the ratio with the film started at the second, just above
+/// it with the film started there, and the coupled solution of each start gave the other.
+pub const INLET_FILM_HYSTERESIS: f64 = 0.005;
 
 /// [`ThermalContact::inner_residual`] takes the film's own residual over the cells whose film
 /// is at most this many times its row's thinnest: the inlet that sets the film thickness, but
@@ -146,6 +147,11 @@ pub struct ContactOptions {
     /// (lagged by one film-body iteration; see `film_energy::SideFlow`); false: independent
     /// lines, as before 2026-11-26
     pub side_flow: bool,
+    /// hold a grid line's film start against small moves downstream
+    /// ([`INLET_FILM_HYSTERESIS`]); off by default (the results of a run are then those of
+    /// the rule alone), on once the steady driver has handed a line to Newton's method on the
+    /// coupled problem (`crate::ehl::thermal`)
+    pub inlet_hysteresis: bool,
 }
 
 impl Default for ContactOptions {
@@ -174,6 +180,7 @@ impl Default for ContactOptions {
                 ..LineOptions::default()
             },
             side_flow: true,
+            inlet_hysteresis: false,
         }
     }
 }
@@ -507,7 +514,8 @@ impl ThermalContact {
                     .map_or(len[j], |k| k - j * nx);
                 // the last start, while the film there is within the hysteresis
                 let last = self.start[j];
-                let keep = self.lines[j].is_some()
+                let keep = self.options.inlet_hysteresis
+                    && self.lines[j].is_some()
                     && last < rule
                     && last < len[j]
                     && active[j * nx + last]
