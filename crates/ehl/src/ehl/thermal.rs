@@ -173,7 +173,10 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// Table 3.7 line with the Roelands-Carreau example oil (`ehl_thermal_line.toml`, 512 cells,
 /// map of 2026-11-28) it converged in pure rolling and at SRR 0.05 up to L = 22 (from L = 3.2
 /// or 6.8 with the retry at 11 points across the film), at SRR 0.3 up to 13, and at SRR 1 up
-/// to 3.2 but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin. The
+/// to 3.2 but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin; with
+/// Newton's method on the coupled problem ([`ThermalParams::coupled_newton`], line contacts
+/// only) every run of that map settles up to L = 13 and all but SRR 1 at L = 22, but the
+/// limit stays: finite rollers and balls have the fixed point alone. The
 /// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
 /// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
 /// it did not settle in 80). A run, steady or transient, that fails above it says so in its
