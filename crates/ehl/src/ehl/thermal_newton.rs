@@ -184,6 +184,10 @@ pub(super) fn polish(
     cp.eval(sys, contact, st, &x[n + 1..], &mut r[n + 1..])
         .map_err(err)?;
     for step in 0..=MAX_STEPS {
+        // a cancelled run stops here; the driver then stops at its next check
+        if crate::run::cancel::requested() {
+            return Err("cancelled".into());
+        }
         sys.scaling(st, &mut c, Some(&mut share));
         sys.merit_vector(st, &c, &mut r[..n + 1], &mut set);
         let res = sys.relative_residual(st, &c);
@@ -244,7 +248,7 @@ pub(super) fn polish(
             let (c, set, r, x) = (&c, &set, &r, &x);
             let mut matvec = |v: &[f64], o: &mut [f64]| {
                 let vs = rms(v);
-                if vs == 0.0 || failed.is_some() {
+                if vs == 0.0 || failed.is_some() || crate::run::cancel::requested() {
                     o.iter_mut().for_each(|a| *a = 0.0);
                     return;
                 }
