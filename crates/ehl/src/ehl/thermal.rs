@@ -849,4 +849,19 @@ mod tests {
         assert_eq!(mixing_parameter(&p, Some(f64::NAN), Some(0.05)), w);
         assert_eq!(mixing_parameter(&p, Some(0.05), Some(f64::NAN)), w);
     }
+
+    /// The remaining outer iterations of a geometric residual sequence are its own count:
+    /// 0.125 -> 1e-4 at a contraction of 0.5 takes ln(8e-4) / ln(0.5) = 10.29; a sequence that
+    /// does not contract never arrives; too short a history or a residual already below the
+    /// stop asks for none (which keeps the fixed point going).
+    #[test]
+    fn remaining_outer_iterations_of_a_geometric_sequence() {
+        let r = [1.0, 0.5, 0.25, 0.125];
+        let k = remaining_outer(&r, 1e-4);
+        assert!((k - (8e-4f64).ln() / 0.5f64.ln()).abs() < 1e-12, "{k}");
+        assert_eq!(remaining_outer(&[1.0, 1.0, 1.1, 1.2], 1e-4), f64::INFINITY);
+        assert_eq!(remaining_outer(&[0.5, 0.25, 0.125], 1e-4), 0.0);
+        assert_eq!(remaining_outer(&[f64::INFINITY, 0.5, 0.25, 0.125], 1e-4), 0.0);
+        assert_eq!(remaining_outer(&[1.0, 0.1, 1e-3, 1e-5], 1e-4), 0.0);
+    }
 }
