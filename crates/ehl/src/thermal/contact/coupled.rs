@@ -16,7 +16,11 @@
 //! With them come the generalized Reynolds factors of the same profiles, so that the Reynolds
 //! rows of the coupled system see the temperatures it solves. The columns take the line's
 //! pressure gradient as given (not the flux-driven form of [`ThermalContact::update`]): the two
-//! agree where the factors are those of the profiles, which is what the coupled system solves.
+//! agree where the factors are those of the profiles, which is what the coupled system solves,
+//! and no column is capped by the limiting shear stress: the flux-driven columns match their
+//! flux with the coefficient before the cap and the factors are taken after it, so where the
+//! cap holds the two solve slightly different equations (docs/thermal.md, "Left open"; the
+//! driver gives such a line back to the fixed point, `POLISH_RUN` in `crate::ehl::thermal`).
 
 use super::*;
 use crate::thermal::film_energy::{
