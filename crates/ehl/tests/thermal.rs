@@ -389,14 +389,16 @@ fn newton_settles_the_sliding_line_the_fixed_point_did_not() {
 /// method on (the default) as with the fixed point alone, on the same solution: the example
 /// line loaded to p_h = 2 GPa (W = 5e-4) at U = 1e-11 (1.1 m/s), Lambda = 0.04, SRR 0.5, 256
 /// cells. The cap holds: its friction coefficient is at least 5 % under the same line's
-/// without a limit (measured 0.0379 against 0.0568). Where the cap holds the fixed point and
-/// the coupled system do not solve quite the same equations (docs/thermal.md, "Left open"):
-/// handed to Newton, the line was polished again every outer iteration to the limit of 80
-/// (measured on SRR 0.2 to 1 at Lambda 0.04 and 0.06), and is now given back to the fixed
-/// point after three polishes (`POLISH_RUN`). Both must converge, with Newton in under 40
-/// outer iterations (measured 29 and 7 Newton steps, as the fixed point alone), and agree on
-/// friction and central film within 1e-5 and the largest film temperature within 0.01 K
-/// (measured 3e-7, 9e-7; the factors' and temperatures' stops are 1e-4 and 0.05 K). ~1 s.
+/// without a limit (measured 0.0383 against 0.0568). Both must converge, with Newton in
+/// under 30 outer iterations (measured 13 and 2 Newton steps; the fixed point alone 37), and
+/// agree on friction and central film within 1e-5 and the largest film temperature within
+/// 0.01 K, well inside the fixed point's stops on the factors (1e-4) and temperatures
+/// (0.05 K) (measured 3e-8, 2e-7, 5e-6 K). Before the fixed point's columns matched their
+/// flux with the capped profile, the two methods solved different equations where the cap
+/// held (the columns' gradient a_capped / a_free times the pressure's): handed to Newton,
+/// the line was polished again every outer iteration to the limit of 80 (measured on SRR 0.2
+/// to 1 at Lambda 0.04 and 0.06), and the fixed point's friction was 1.1 % lower (0.03791).
+/// ~1 s.
 #[test]
 fn a_line_held_by_its_limiting_shear_stress_settles_on_one_solution() {
     let run = |lambda: Option<f64>, newton: bool| {

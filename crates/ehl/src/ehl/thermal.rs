@@ -162,14 +162,13 @@ const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 
 /// A line polished this many times since its last failed polish, each time to a solution that
 /// the update after it did not find settled, is given back to the fixed point for the rest of
-/// the run. Where the
-/// limiting shear stress caps columns the two do not solve quite the same equations (the
-/// flux-driven columns of the fixed point match their flux with the coefficient before the
-/// cap, the coupled system's columns take the pressure's gradient; docs/thermal.md, "Left
-/// open"), and without this limit the line was polished again every outer iteration up to
-/// `max_outer` (measured: the example line at p_h = 2 GPa, U = 1e-11, Lambda = 0.04 and SRR
-/// 0.2 to 1, unsettled after 80 outer iterations, where the fixed point alone settles in 20
-/// to 37). The map's lines settle as they did without the limit.
+/// the run: a guard against the two methods not solving quite the same equations. They did
+/// not where the limiting shear stress capped columns, before the fixed point's flux-driven
+/// columns matched their flux after the cap (`film_energy`'s `column_coefficients`): the line
+/// was polished again every outer iteration to `max_outer` (measured: the example line at
+/// p_h = 2 GPa, U = 1e-11, Lambda = 0.04 and SRR 0.2 to 1, unsettled after 80 outer
+/// iterations, where the fixed point alone settled in 20 to 37; with the old matching and this
+/// guard the thermal map's results were unchanged to the last digit).
 const POLISH_RUN: usize = 3;
 
 /// The polish solves the temperature rows to this fraction of

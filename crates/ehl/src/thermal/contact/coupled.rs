@@ -16,11 +16,10 @@
 //! With them come the generalized Reynolds factors of the same profiles, so that the Reynolds
 //! rows of the coupled system see the temperatures it solves. The columns take the line's
 //! pressure gradient as given (not the flux-driven form of [`ThermalContact::update`]): the two
-//! agree where the factors are those of the profiles, which is what the coupled system solves,
-//! and no column is capped by the limiting shear stress: the flux-driven columns match their
-//! flux with the coefficient before the cap and the factors are taken after it, so where the
-//! cap holds the two solve slightly different equations (docs/thermal.md, "Left open"; the
-//! driver gives such a line back to the fixed point, `POLISH_RUN` in `crate::ehl::thermal`).
+//! agree where the factors are those of the profiles, which is what the coupled system solves
+//! (the flux-driven columns match their flux with the profile the factors are taken from, the
+//! one the limiting shear stress capped, and blend the cap in by the same gradient at a
+//! settled column: `film_energy`'s `capped_profile`).
 
 use super::*;
 use crate::thermal::film_energy::{
