@@ -103,7 +103,8 @@ pub struct ThermalParams {
     /// is handed to Newton's method on the coupled problem of pressure, film and surface
     /// temperatures (`super::thermal_newton`); the fixed point's own stop then judges the
     /// result. On the Table 3.7 line's thermal map (docs/thermal.md) 19 of 20 runs settle
-    /// instead of 15, in 483 outer iterations instead of 909, in 10-15 % more time.
+    /// instead of 15, in 483 outer iterations instead of 909 (501 since capped columns carry
+    /// their flux with the capped profile), in 10-15 % more time.
     pub coupled_newton: bool,
 }
 
@@ -319,7 +320,7 @@ fn run(
     let mut repolish = false;
     // polishes since the last failed one that reached a solution the next update did not
     // find settled (see POLISH_RUN)
-    let mut polished_in_a_row = 0;
+    let mut polishes_since_failure = 0;
     // the factors' residual of every outer iteration
     let mut residuals: Vec<f64> = Vec::new();
     let mut coupled_steps = 0;
@@ -406,7 +407,7 @@ fn run(
             && grid.ny == 1
             && outer >= next_polish
             && outer < thermal.max_outer
-            && polished_in_a_row < POLISH_RUN
+            && polishes_since_failure < POLISH_RUN
             && (repolish
                 || outer >= POLISH_LATE
                 || remaining_outer(&residuals, thermal.factor_tolerance) > POLISH_WORTH)
@@ -431,7 +432,7 @@ fn run(
             ) {
                 Ok(pol) => {
                     coupled_steps += pol.steps;
-                    polished_in_a_row += 1;
+                    polishes_since_failure += 1;
                     // the film's extent was frozen at the update before: where the
                     // polished pressure moves it, the next update shows it, and the next
                     // polish starts from there
@@ -444,7 +445,7 @@ fn run(
                     continue;
                 }
                 Err(_) => {
-                    polished_in_a_row = 0;
+                    polishes_since_failure = 0;
                     st = saved.0;
                     sys.thermal = saved.1;
                     sys.eval(&mut st);

@@ -770,7 +770,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
         }
     }
     // the shear-thinning iteration's warm start is its own fixed point's viscosity (before
-    // the cap), the flux's the coefficient it was matched with (after)
+    // the cap), the flux's the last capped coefficient (after)
     for k in 0..nz {
         factors[k] = s.eta_eff[k] / eta[k];
     }
@@ -1753,11 +1753,11 @@ mod tests {
     /// the Reynolds factors: the line of [`a_flux_driven_line_started_warm_is_where_it_was`]
     /// at a tenth of its gradients (the sliding stress then dominates, and the cap is applied
     /// in full where tau_L >= 2 h |dp/dx|), capped at 0.7 of its largest stress without the
-    /// cap. Checked on every column to 1e-8 of the flux (the same fixed point of the gradient
-    /// across the film iterations as there), on at least a third of the columns stressed
-    /// below 0.9 of their free stress (measured: 29 of 48). Fails with the flux matched before
-    /// the cap (measured: off by up to 45 %), where the column's gradient at the fixed point is
-    /// a_capped / a_free times the one the Reynolds equation solved with.
+    /// cap. Checked on every column to 1e-8 of the flux (measured 1.1e-12; the tolerance of
+    /// that test, whose gradient iteration this is), on at least a third of the columns
+    /// stressed below 0.9 of their free stress (measured: 29 of 48). Fails with the flux
+    /// matched before the cap (measured: off by up to 45 %), where the column's gradient at the
+    /// fixed point is a_capped / a_free times the one the Reynolds equation solved with.
     #[test]
     fn a_capped_flux_driven_line_carries_its_flux_with_the_capped_profiles() {
         let (law, rule) = thinning_oil();
