@@ -1639,6 +1639,30 @@ mod tests {
             .collect()
     }
 
+    /// The film (m), gradient (Pa/m, a sine of amplitude `amplitude`) and imposed Poiseuille
+    /// flux (kg/(m s), [`newtonian_poiseuille_flux`]) of the flux-driven test lines, 48 cells.
+    fn flux_driven_case(amplitude: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let nx = 48;
+        let h: Vec<f64> = (0..nx)
+            .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
+            .collect();
+        let dpdx: Vec<f64> = (0..nx)
+            .map(|i| amplitude * (std::f64::consts::PI * i as f64 / nx as f64).sin())
+            .collect();
+        let q = newtonian_poiseuille_flux(&h, &dpdx);
+        (h, dpdx, q)
+    }
+
+    /// The film iteration of the flux-driven test lines: to 1e-9 K.
+    fn flux_driven_options() -> LineOptions {
+        LineOptions {
+            tol: 1e-9,
+            anderson: 4,
+            relaxation: 0.4,
+            ..LineOptions::default()
+        }
+    }
+
     /// A flux-driven shear-thinning line (the Poiseuille flux of a Newtonian film at the line's
     /// gradient imposed, sliding at 2 m/s, the pressure-flow stress at the walls of the order
     /// of the sliding one, so that the column's gradient is a fixed point that takes
@@ -1657,23 +1681,12 @@ mod tests {
     #[test]
     fn a_flux_driven_line_started_warm_is_where_it_was() {
         let (law, rule) = thinning_oil();
-        let nx = 48;
-        let h: Vec<f64> = (0..nx)
-            .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
-            .collect();
-        let dpdx: Vec<f64> = (0..nx)
-            .map(|i| 5e12 * (std::f64::consts::PI * i as f64 / nx as f64).sin())
-            .collect();
-        let q = newtonian_poiseuille_flux(&h, &dpdx);
+        let (h, dpdx, q) = flux_driven_case(5e12);
+        let nx = h.len();
         let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
         let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
         line.poiseuille_flux_x = Some(&q);
-        let opts = LineOptions {
-            tol: 1e-9,
-            anderson: 4,
-            relaxation: 0.4,
-            ..LineOptions::default()
-        };
+        let opts = flux_driven_options();
         let cold = solve_line_from(&rule, &law, &OIL, &line, None, None, &opts).unwrap();
         assert!(
             cold.converged && cold.iterations > 3,
@@ -1761,23 +1774,12 @@ mod tests {
     #[test]
     fn a_capped_flux_driven_line_carries_its_flux_with_the_capped_profiles() {
         let (law, rule) = thinning_oil();
-        let nx = 48;
-        let h: Vec<f64> = (0..nx)
-            .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
-            .collect();
-        let dpdx: Vec<f64> = (0..nx)
-            .map(|i| 5e11 * (std::f64::consts::PI * i as f64 / nx as f64).sin())
-            .collect();
-        let q = newtonian_poiseuille_flux(&h, &dpdx);
+        let (h, dpdx, q) = flux_driven_case(5e11);
+        let nx = h.len();
         let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
         let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
         line.poiseuille_flux_x = Some(&q);
-        let opts = LineOptions {
-            tol: 1e-9,
-            anderson: 4,
-            relaxation: 0.4,
-            ..LineOptions::default()
-        };
+        let opts = flux_driven_options();
         let top = |pr: &FilmProfile| {
             pr.tau_zx
                 .iter()
