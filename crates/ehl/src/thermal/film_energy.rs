@@ -603,11 +603,12 @@ struct ColumnSlots<'a> {
 /// where the limit exceeds the pressure-flow stress range `range` = h |grad p| (Pa; the sliding
 /// part alone can then meet it); in the low-pressure inlet, where tau_L = Lambda p falls below
 /// that, the column keeps the law without the cap (its stresses are kPa there). Between the
-/// two the cap is phased in, the scaling r taken to the power CAP_BLEND = clamp(tau_L / range
-/// - 1, 0, 1): switched on and off abruptly, columns at the threshold flipped between capped
-/// and free from one outer iteration to the next and the factors never settled (measured: a
-/// ball at 1 m/s, SRR 1, Carreau with Lambda 0.07, 80 outer iterations with the flow factor
-/// of a few cells cycling by 0.15 in log, the temperatures settled).
+/// two the cap is phased in, the scaling r taken to the power
+/// CAP_BLEND = clamp(tau_L / range - 1, 0, 1): switched on and off abruptly, columns at the
+/// threshold flipped between capped and free from one outer iteration to the next and the
+/// factors never settled (measured: a ball at 1 m/s, SRR 1, Carreau with Lambda 0.07, 80
+/// outer iterations with the flow factor of a few cells cycling by 0.15 in log, the
+/// temperatures settled).
 ///
 /// A flux-driven column's `range` is the larger of the pressure's own gradient's and its
 /// iterate's. Taken from the iterate alone, the blend fed back on the gradient the flux sets
