@@ -1602,8 +1602,9 @@ mod tests {
     }
 
     /// [`ExpLaw`] with Carreau shear thinning (G = 0.2 MPa, n = 0.5), so that a flux-driven
-    /// column's pressure gradient is a fixed point (`FLUX_RESOLVES`).
-    struct ThinningLaw(ExpLaw);
+    /// column's pressure gradient is a fixed point (`FLUX_RESOLVES`), and a limiting shear
+    /// stress (Pa, the same at every state) where the second field has one.
+    struct ThinningLaw(ExpLaw, Option<f64>);
 
     impl FilmLaws for ThinningLaw {
         fn viscosity(&self, p: f64, t: f64) -> f64 {
@@ -1624,11 +1625,17 @@ mod tests {
                 ln_g: 2e5f64.ln(),
             })
         }
+        fn limiting_shear_stress(&self, _: f64, _: f64) -> Option<f64> {
+            self.1
+        }
     }
 
-    /// [`ThinningLaw`] at eta0 = 0.5 Pa s falling by 0.03 1/K (D = 6.5e-4 1/K) and 7 points.
+    /// [`ThinningLaw`] without a limit at eta0 = 0.5 Pa s falling by 0.03 1/K (D = 6.5e-4 1/K) and 7 points.
     fn thinning_oil() -> (ThinningLaw, Lobatto) {
-        (ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4)), Lobatto::new(7))
+        (
+            ThinningLaw(ExpLaw::new(0.5, 0.03, 6.5e-4), None),
+            Lobatto::new(7),
+        )
     }
 
     /// The Poiseuille flux -rho/eta h^3/12 dp/dx of [`thinning_oil`] without shear thinning
@@ -1738,30 +1745,6 @@ mod tests {
         );
     }
 
-    /// [`ThinningLaw`] with a limiting shear stress (Pa), the same at every state.
-    struct CappedThinning(ThinningLaw, f64);
-
-    impl FilmLaws for CappedThinning {
-        fn viscosity(&self, p: f64, t: f64) -> f64 {
-            self.0.viscosity(p, t)
-        }
-        fn density(&self, p: f64, t: f64) -> f64 {
-            self.0.density(p, t)
-        }
-        fn density_dt(&self, p: f64, t: f64) -> f64 {
-            self.0.density_dt(p, t)
-        }
-        fn ln_effective_viscosity(&self, ln_eta: f64, ln_rate: f64, p: f64, t: f64) -> (f64, f64) {
-            self.0.ln_effective_viscosity(ln_eta, ln_rate, p, t)
-        }
-        fn ln_shear_law(&self, p: f64, t: f64) -> Option<crate::lubricant::rheology::LnShearLaw> {
-            self.0.ln_shear_law(p, t)
-        }
-        fn limiting_shear_stress(&self, _: f64, _: f64) -> Option<f64> {
-            Some(self.1)
-        }
-    }
-
     /// A flux-driven line whose columns reach the limiting shear stress carries the imposed
     /// Poiseuille flux with the profiles it ends on, the capped ones, whose coefficients are
     /// the Reynolds factors: the line of [`a_flux_driven_line_started_warm_is_where_it_was`]
@@ -1789,7 +1772,7 @@ mod tests {
         };
         let free = solve_line_from(&rule, &law, &OIL, &line, None, None, &opts).unwrap();
         let cap = 0.7 * free.profiles.iter().map(top).fold(0.0, f64::max);
-        let capped_law = CappedThinning(law, cap);
+        let capped_law = ThinningLaw(law.0, Some(cap));
         let capped = solve_line_from(&rule, &capped_law, &OIL, &line, None, None, &opts).unwrap();
         assert!(capped.converged, "change {:e} K", capped.change);
         let mut held = 0;
