@@ -46,6 +46,39 @@ fn solve(c: &Case) -> Solution {
     s
 }
 
+/// Newton's method on the coupled problem (`a`) and the fixed point alone (`b`) on the same
+/// line: the films and friction within `rel` of each other, the largest film temperature
+/// within `kelvin`.
+fn assert_methods_agree(
+    a: &ehl::solution::Summary,
+    b: &ehl::solution::Summary,
+    figures: &[&str],
+    rel: f64,
+    kelvin: f64,
+) {
+    for &name in figures {
+        let (x, y) = match name {
+            "central film" => (a.central_film_m, b.central_film_m),
+            "minimum film" => (a.min_film_m, b.min_film_m),
+            "friction" => (a.friction_coefficient, b.friction_coefficient),
+            _ => panic!("no figure {name}"),
+        };
+        let (x, y) = (x.unwrap(), y.unwrap());
+        assert!(
+            (x / y - 1.0).abs() < rel,
+            "{name}: Newton {x:.7e}, fixed point {y:.7e}"
+        );
+    }
+    let (ta, tb) = (
+        a.max_film_temperature_k.unwrap(),
+        b.max_film_temperature_k.unwrap(),
+    );
+    assert!(
+        (ta - tb).abs() < kelvin,
+        "largest film temperature {ta} against {tb} K"
+    );
+}
+
 /// A Newtonian, isothermal-looking film: rheology Newtonian (the thermal run uses the full
 /// velocity profile, the isothermal one the Newtonian Reynolds equation: the same law).
 const NEWTONIAN: &str = "lubricant.rheology={ model = \"newtonian\" }";
@@ -358,24 +391,12 @@ fn newton_settles_the_sliding_line_the_fixed_point_did_not() {
     // (the agreement below is of two methods: the line must have been handed to Newton)
     let steps = a.thermal_newton_steps.unwrap();
     assert!(steps > 0, "{steps} Newton steps");
-    for (name, x, y) in [
-        ("central film", a.central_film_m, b.central_film_m),
-        ("minimum film", a.min_film_m, b.min_film_m),
-        ("friction", a.friction_coefficient, b.friction_coefficient),
-    ] {
-        let (x, y) = (x.unwrap(), y.unwrap());
-        assert!(
-            (x / y - 1.0).abs() < 1e-4,
-            "{name}: Newton {x:.7e}, fixed point {y:.7e}"
-        );
-    }
-    let (ta, tb) = (
-        a.max_film_temperature_k.unwrap(),
-        b.max_film_temperature_k.unwrap(),
-    );
-    assert!(
-        (ta - tb).abs() < 0.05,
-        "largest film temperature {ta} against {tb} K"
+    assert_methods_agree(
+        &a,
+        &b,
+        &["central film", "minimum film", "friction"],
+        1e-4,
+        0.05,
     );
 
     let c = run("2.2e-10", true);
@@ -431,24 +452,7 @@ fn a_line_held_by_its_limiting_shear_stress_settles_on_one_solution() {
         steps > 0 && outer < 20,
         "{outer} outer iterations, {steps} Newton steps"
     );
-    for (name, x, y) in [
-        ("central film", a.central_film_m, b.central_film_m),
-        ("friction", a.friction_coefficient, b.friction_coefficient),
-    ] {
-        let (x, y) = (x.unwrap(), y.unwrap());
-        assert!(
-            (x / y - 1.0).abs() < 1e-5,
-            "{name}: Newton {x:.7e}, fixed point {y:.7e}"
-        );
-    }
-    let (ta, tb) = (
-        a.max_film_temperature_k.unwrap(),
-        b.max_film_temperature_k.unwrap(),
-    );
-    assert!(
-        (ta - tb).abs() < 0.01,
-        "largest film temperature {ta} against {tb} K"
-    );
+    assert_methods_agree(&a, &b, &["central film", "friction"], 1e-5, 0.01);
     let free = run(None, true).friction_coefficient.unwrap();
     let held = a.friction_coefficient.unwrap();
     assert!(held < 0.95 * free, "friction {held} held, {free} free");
