@@ -172,6 +172,75 @@ const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 /// guard the thermal map's results were unchanged to the last digit).
 const POLISH_RUN: usize = 3;
 
+/// When a line contact's fixed point is handed to Newton's method on the coupled problem
+/// (`super::thermal_newton::polish`): from [`POLISH_FROM`], when slow ([`POLISH_WORTH`],
+/// [`POLISH_LATE`]) and near ([`POLISH_FACTOR_RESIDUAL`], [`POLISH_INNER_RESIDUAL_K`]); again
+/// at the next outer iteration after a polish that reached a solution (the film's extent,
+/// frozen in the polish, may have moved with its pressure, and the update after it shows
+/// where), [`POLISH_EVERY`] outer iterations after one that failed, and never again after
+/// [`POLISH_RUN`] polishes in a row that reached a solution the fixed point did not then
+/// find settled.
+#[derive(Debug, Clone)]
+struct PolishSchedule {
+    /// the first outer iteration that may polish
+    next: usize,
+    /// the last polish reached a solution (which the update after it did not find settled,
+    /// or the run would have stopped)
+    repolish: bool,
+    /// polishes since the last failed one that reached a solution (see [`POLISH_RUN`])
+    reached_in_a_row: usize,
+}
+
+impl PolishSchedule {
+    fn new() -> Self {
+        PolishSchedule {
+            next: POLISH_FROM,
+            repolish: false,
+            reached_in_a_row: 0,
+        }
+    }
+
+    /// Whether outer iteration `outer` (of at most `max_outer`) polishes, after its update:
+    /// `residuals` the factors' residual of every outer iteration so far (this one's last),
+    /// `factor_tol` their stop, `inner_k` the temperature solve's own residual (K). Not at the
+    /// last outer iteration: the contact's lines would not see the polished pressure.
+    fn due(
+        &self,
+        outer: usize,
+        max_outer: usize,
+        residuals: &[f64],
+        factor_tol: f64,
+        inner_k: f64,
+    ) -> bool {
+        let Some(&residual) = residuals.last() else {
+            return false;
+        };
+        outer >= self.next
+            && outer < max_outer
+            && self.reached_in_a_row < POLISH_RUN
+            && (self.repolish
+                || outer >= POLISH_LATE
+                || remaining_outer(residuals, factor_tol) > POLISH_WORTH)
+            && residual <= POLISH_FACTOR_RESIDUAL
+            && inner_k <= POLISH_INNER_RESIDUAL_K
+    }
+
+    /// The polish at outer iteration `outer` reached a solution.
+    fn reached(&mut self, outer: usize) {
+        self.reached_in_a_row += 1;
+        self.next = outer + 1;
+        self.repolish = true;
+    }
+
+    /// The polish at outer iteration `outer` failed (the fixed point goes on from its own
+    /// iterate).
+    fn failed(&mut self, outer: usize) {
+        self.reached_in_a_row = 0;
+        self.next = outer + POLISH_EVERY;
+        self.repolish = false;
+    }
+}
+
 /// The polish solves the temperature rows to this fraction of
 /// [`ThermalParams::tolerance_k`].
 const POLISH_TOLERANCE: f64 = 0.02;
@@ -314,13 +383,8 @@ fn run(
     // and the map's contraction then (see map_contraction)
     let mut last_pair: Option<(ThermalFactors, ThermalFactors)> = None;
     let mut prev_contraction: Option<f64> = None;
-    // the next outer iteration that tries Newton's method on the coupled problem
-    let mut next_polish = POLISH_FROM;
-    // the last polish reached a solution that the update after it did not find settled
-    let mut repolish = false;
-    // polishes since the last failed one that reached a solution the next update did not
-    // find settled (see POLISH_RUN)
-    let mut polishes_since_failure = 0;
+    // when Newton's method on the coupled problem is tried
+    let mut polishing = PolishSchedule::new();
     // the factors' residual of every outer iteration
     let mut residuals: Vec<f64> = Vec::new();
     let mut coupled_steps = 0;
@@ -405,17 +469,14 @@ fn run(
         // pressure)
         if thermal.coupled_newton
             && grid.ny == 1
-            && outer >= next_polish
-            && outer < thermal.max_outer
-            && polishes_since_failure < POLISH_RUN
-            && (repolish
-                || outer >= POLISH_LATE
-                || remaining_outer(&residuals, thermal.factor_tolerance) > POLISH_WORTH)
-            && residual <= POLISH_FACTOR_RESIDUAL
-            && contact.inner_residual() <= POLISH_INNER_RESIDUAL_K
+            && polishing.due(
+                outer,
+                thermal.max_outer,
+                &residuals,
+                thermal.factor_tolerance,
+                contact.inner_residual(),
+            )
         {
-            next_polish = outer + POLISH_EVERY;
-            repolish = false;
             // the polish freezes the film's extent: from now on its start holds against
             // small moves (see `crate::thermal::contact::INLET_FILM_HYSTERESIS`)
             contact.options.inlet_hysteresis = true;
@@ -432,12 +493,7 @@ fn run(
             ) {
                 Ok(pol) => {
                     coupled_steps += pol.steps;
-                    polishes_since_failure += 1;
-                    // the film's extent was frozen at the update before: where the
-                    // polished pressure moves it, the next update shows it, and the next
-                    // polish starts from there
-                    next_polish = outer + 1;
-                    repolish = true;
+                    polishing.reached(outer);
                     factors = pol.factors;
                     end = Some(pol.end);
                     tight = true;
@@ -445,7 +501,7 @@ fn run(
                     continue;
                 }
                 Err(_) => {
-                    polishes_since_failure = 0;
+                    polishing.failed(outer);
                     st = saved.0;
                     sys.thermal = saved.1;
                     sys.eval(&mut st);
@@ -887,5 +943,81 @@ mod tests {
             0.0
         );
         assert_eq!(remaining_outer(&[1.0, 0.1, 1e-3, 1e-5], 1e-4), 0.0);
+    }
+
+    /// The guard POLISH_RUN: a line whose polishes keep reaching solutions that the fixed point
+    /// does not then find settled is polished POLISH_RUN times in a row and then left to the
+    /// fixed point for the rest of the run; a failed polish starts the count again, after
+    /// POLISH_EVERY outer iterations. The schedule's other conditions: not before POLISH_FROM,
+    /// not at the last outer iteration, not while far (the factors' residual above
+    /// POLISH_FACTOR_RESIDUAL, the temperature solve's own above POLISH_INNER_RESIDUAL_K), not
+    /// while the fixed point is fast.
+    #[test]
+    fn a_line_polished_without_settling_goes_back_to_the_fixed_point() {
+        let (tol, inner, max) = (1e-4, 0.1, 80);
+        // a slow fixed point: contraction 0.9 an outer iteration, ~60 more to its stop
+        let slow: Vec<f64> = (0..max).map(|k| 0.05 * 0.9f64.powi(k as i32)).collect();
+        let due = |s: &PolishSchedule, outer: usize| s.due(outer, max, &slow[..outer], tol, inner);
+        let mut s = PolishSchedule::new();
+        assert!((1..POLISH_FROM).all(|outer| !due(&s, outer)));
+        let first = POLISH_FROM;
+        assert!(due(&s, first));
+        for k in 0..POLISH_RUN {
+            assert!(due(&s, first + k), "polish {k} of the run");
+            s.reached(first + k);
+        }
+        let after = first + POLISH_RUN;
+        assert!(
+            (after..max).all(|outer| !due(&s, outer)),
+            "polished again after {POLISH_RUN} unsettled polishes"
+        );
+
+        // a failed polish: the next one POLISH_EVERY outer iterations later, the count anew
+        let mut s = PolishSchedule::new();
+        s.reached(first);
+        s.reached(first + 1);
+        s.failed(first + 2);
+        let next = first + 2 + POLISH_EVERY;
+        assert!((first + 3..next).all(|outer| !due(&s, outer)));
+        assert!(due(&s, next));
+        for k in 0..POLISH_RUN {
+            assert!(due(&s, next + k), "polish {k} after the failure");
+            s.reached(next + k);
+        }
+        assert!(!due(&s, next + POLISH_RUN));
+
+        // the other conditions
+        let s = PolishSchedule::new();
+        assert!(
+            !s.due(max, max, &slow, tol, inner),
+            "the last outer iteration"
+        );
+        let far: Vec<f64> = slow.iter().map(|r| r * 10.0).collect();
+        assert!(
+            !s.due(first, max, &far[..first], tol, inner),
+            "residual {}",
+            far[first - 1]
+        );
+        assert!(!s.due(
+            first,
+            max,
+            &slow[..first],
+            tol,
+            2.0 * POLISH_INNER_RESIDUAL_K
+        ));
+        let fast: Vec<f64> = (0..max).map(|k| 0.05 * 0.3f64.powi(k as i32)).collect();
+        assert!(
+            !s.due(first, max, &fast[..first], tol, inner),
+            "a fast fixed point"
+        );
+        // a fast fixed point (contraction 0.3) still short of its stop: polished only from
+        // POLISH_LATE on
+        let late = |outer: usize| -> Vec<f64> {
+            (0..outer)
+                .map(|k| 0.05 * 0.3f64.powi(k as i32 + 4 - outer as i32).min(1.0))
+                .collect()
+        };
+        assert!(!s.due(POLISH_LATE - 1, max, &late(POLISH_LATE - 1), tol, inner));
+        assert!(s.due(POLISH_LATE, max, &late(POLISH_LATE), tol, inner));
     }
 }
