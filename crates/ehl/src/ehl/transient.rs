@@ -69,7 +69,7 @@ pub const THERMAL_SEED_TOLERANCE: f64 = 1e-5;
 /// next solve, stops its film and body iterations at this fraction of `thermal.tolerance_k`
 /// (where its own stops are tighter): the step's stop compares the second update's
 /// temperatures with the first's, so the first's looseness can only fail it. The same 30
-/// steps: 33.4-34.4 s -> 31.1 s with this alone, 27.4-28.0 s with both.
+/// steps: 35.1-35.5 s -> 31.1 s with this alone, 27.4-28.1 s with both.
 pub const THERMAL_SEED_TEMPERATURE: f64 = 0.2;
 
 /// Largest line (cells) whose time steps are preconditioned by a dense LU kept over the steps:
