@@ -959,9 +959,9 @@ mod tests {
         let slow: Vec<f64> = (0..max).map(|k| 0.05 * 0.9f64.powi(k as i32)).collect();
         let due = |s: &PolishSchedule, outer: usize| s.due(outer, max, &slow[..outer], tol, inner);
         let mut s = PolishSchedule::new();
-        assert!((1..POLISH_FROM).all(|outer| !due(&s, outer)));
+        // (a history long enough for the pace estimate, so that only POLISH_FROM holds it back)
+        assert!((1..POLISH_FROM).all(|outer| !s.due(outer, max, &slow[..10], tol, inner)));
         let first = POLISH_FROM;
-        assert!(due(&s, first));
         for k in 0..POLISH_RUN {
             assert!(due(&s, first + k), "polish {k} of the run");
             s.reached(first + k);
@@ -1010,6 +1010,14 @@ mod tests {
             !s.due(first, max, &fast[..first], tol, inner),
             "a fast fixed point"
         );
+        // a fast fixed point is polished again at the next outer iteration after a polish that
+        // reached a solution, not after one that failed
+        let mut s = PolishSchedule::new();
+        s.reached(first);
+        assert!(s.due(first + 1, max, &fast[..first + 1], tol, inner));
+        s.failed(first + 1);
+        let next = first + 1 + POLISH_EVERY;
+        assert!(!s.due(next, max, &fast[..first + 1], tol, inner));
         // a fast fixed point (contraction 0.3) still short of its stop: polished only from
         // POLISH_LATE on
         let late = |outer: usize| -> Vec<f64> {
