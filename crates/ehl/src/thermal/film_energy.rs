@@ -1647,18 +1647,51 @@ mod tests {
             .collect()
     }
 
-    /// The film (m), gradient (Pa/m, a sine of amplitude `amplitude`) and imposed Poiseuille
-    /// flux (kg/(m s), [`newtonian_poiseuille_flux`]) of the flux-driven test lines, 48 cells.
-    fn flux_driven_case(amplitude: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let nx = 48;
-        let h: Vec<f64> = (0..nx)
-            .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
-            .collect();
-        let dpdx: Vec<f64> = (0..nx)
-            .map(|i| amplitude * (std::f64::consts::PI * i as f64 / nx as f64).sin())
-            .collect();
-        let q = newtonian_poiseuille_flux(&h, &dpdx);
-        (h, dpdx, q)
+    /// The flux-driven test lines, 48 cells: film `h` (m), gradient `dpdx` (Pa/m, a sine of
+    /// the given amplitude), the imposed Poiseuille flux `q` (kg/(m s),
+    /// [`newtonian_poiseuille_flux`]), at zero pressure between walls at T0 sliding at 3 and
+    /// 1 m/s ([`FluxDrivenCase::line`]).
+    struct FluxDrivenCase {
+        h: Vec<f64>,
+        dpdx: Vec<f64>,
+        q: Vec<f64>,
+        zeros: Vec<f64>,
+        walls: Vec<f64>,
+    }
+
+    impl FluxDrivenCase {
+        fn new(amplitude: f64) -> Self {
+            let nx = 48;
+            let h: Vec<f64> = (0..nx)
+                .map(|i| 0.4e-6 * (1.0 + 3.0 * ((i as f64 - 30.0) / 30.0).powi(2)))
+                .collect();
+            let dpdx: Vec<f64> = (0..nx)
+                .map(|i| amplitude * (std::f64::consts::PI * i as f64 / nx as f64).sin())
+                .collect();
+            let q = newtonian_poiseuille_flux(&h, &dpdx);
+            FluxDrivenCase {
+                h,
+                dpdx,
+                q,
+                zeros: vec![0.0; nx],
+                walls: vec![T0; nx],
+            }
+        }
+
+        /// The line, 2 um cells, its Poiseuille flux imposed.
+        fn line(&self) -> Line<'_> {
+            let mut line = prescribed(
+                2e-6,
+                &self.h,
+                &self.dpdx,
+                &self.zeros,
+                &self.walls,
+                3.0,
+                1.0,
+            );
+            line.poiseuille_flux_x = Some(&self.q);
+            line
+        }
     }
 
     /// Every column of `sol` carries the imposed Poiseuille flux `q` (kg/(m s)) on film `h`
@@ -1704,11 +1737,9 @@ mod tests {
     #[test]
     fn a_flux_driven_line_started_warm_is_where_it_was() {
         let (law, rule) = thinning_oil();
-        let (h, dpdx, q) = flux_driven_case(5e12);
-        let nx = h.len();
-        let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
-        let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
-        line.poiseuille_flux_x = Some(&q);
+        let case = FluxDrivenCase::new(5e12);
+        let (h, q, nx) = (&case.h, &case.q, case.h.len());
+        let line = case.line();
         let opts = flux_driven_options();
         let cold = solve_line_from(&rule, &law, &OIL, &line, None, None, &opts).unwrap();
         assert!(
@@ -1724,7 +1755,7 @@ mod tests {
             thinned < 0.25,
             "the film thins: eta_eff / eta down to {thinned}"
         );
-        assert_carries_flux(&cold, &h, &q);
+        assert_carries_flux(&cold, h, q);
         let warm = ColumnStart {
             thinning: &cold.thinning,
             poiseuille: &cold.poiseuille,
@@ -1763,11 +1794,9 @@ mod tests {
     #[test]
     fn a_capped_flux_driven_line_carries_its_flux_with_the_capped_profiles() {
         let (law, rule) = thinning_oil();
-        let (h, dpdx, q) = flux_driven_case(5e11);
-        let nx = h.len();
-        let (zeros, walls) = (vec![0.0; nx], vec![T0; nx]);
-        let mut line = prescribed(2e-6, &h, &dpdx, &zeros, &walls, 3.0, 1.0);
-        line.poiseuille_flux_x = Some(&q);
+        let case = FluxDrivenCase::new(5e11);
+        let (h, q, nx) = (&case.h, &case.q, case.h.len());
+        let line = case.line();
         let opts = flux_driven_options();
         let top = |pr: &FilmProfile| {
             pr.tau_zx
@@ -1781,7 +1810,7 @@ mod tests {
         let capped = solve_line_from(&rule, &capped_law, &OIL, &line, None, None, &opts).unwrap();
         assert!(capped.converged, "change {:e} K", capped.change);
         let mut held = 0;
-        assert_carries_flux(&capped, &h, &q);
+        assert_carries_flux(&capped, h, q);
         for (i, pr) in capped.profiles.iter().enumerate() {
             if top(pr) < 0.9 * top(&free.profiles[i]) {
                 held += 1;
