@@ -464,7 +464,8 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
 /// as its value), tau_k = (tau_a + z_k dp/dx, tau_b + z_k dp/dy) with tau_a, tau_b functions of
 /// all y through F0 = h sum w_j e^{-y_j} and F1 = h^2 sum w_j zeta_j e^{-y_j}; a halving line
 /// search on max |R|. A Newtonian law gives R = 0 at y = ln eta: 0 iterations.
-/// Non-convergence within `opts.max_iter` is reported in the result, not as an error.
+/// Non-convergence within `opts.max_iter` (or where no step along the Newton direction can be
+/// evaluated) is reported in the result, not as an error; a start the law fails at is an error.
 ///
 /// `eta` is the low-shear viscosity at the points (Pa s), `rho` the density (kg/m^3), `p` the
 /// pressure (Pa), `t` the temperature at the points (K).
@@ -588,21 +589,35 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
             // singular Jacobian: a plain fixed-point step y <- ln eta_law
             delta.iter_mut().zip(r.iter()).for_each(|(d, v)| *d = -v);
         }
+        // a trial point where the law fails (an effective viscosity that is not finite: a
+        // step far past the solution at an extreme shear rate) is a step too long, not a
+        // failure of the column: halved like one that does not lower the residual
         let mut lambda = 1.0;
+        let mut stalled = false;
         loop {
             for k in 0..n {
                 yp[k] = y[k] + lambda * delta[k];
             }
-            residual(yp, scratch, rp, sp)?;
-            let rn = norm(rp);
-            if rn < res || lambda < 1e-3 {
+            let rn = match residual(yp, scratch, rp, sp) {
+                Ok(()) => norm(rp),
+                Err(_) => f64::INFINITY,
+            };
+            if rn < res || (lambda < 1e-3 && rn.is_finite()) {
                 std::mem::swap(&mut y, &mut yp);
                 std::mem::swap(&mut r, &mut rp);
                 std::mem::swap(&mut slope, &mut sp);
                 res = rn;
                 break;
             }
+            if lambda < 1e-3 {
+                // no step along delta is evaluable: stop with the last iterate, unconverged
+                stalled = true;
+                break;
+            }
             lambda *= 0.5;
+        }
+        if stalled {
+            break;
         }
     }
     for k in 0..n {
@@ -854,6 +869,44 @@ mod tests {
             }
         }
         assert!(previous < 1e-9);
+    }
+
+    /// A trial point of the column's Newton iteration where the law cannot be evaluated is a
+    /// step too long, halved by the line search, not the column's failure (before, the error
+    /// of the trial point ended the whole temperature solve with "the effective viscosity is
+    /// NaN": an Eyring line at p_h = 2 GPa, 5 m/s, SRR 0.5, and an Eyring ball at 5 m/s).
+    /// The law is extreme by design, to reach that point on a column of fixed temperature: a
+    /// law thinning nearly to a constant stress (Carreau, n = 0.01) on a very viscous column
+    /// (eta = 1e10 Pa s) whose pressure-flow stress (5e7 Pa at the walls) is ten times G. A
+    /// Newton step from the low-shear viscosity, ~ -R / (1 + s) with 1 + s ~ n, takes
+    /// ln eta_eff down by hundreds, where e^y underflows to 0 and the law fails. Found by a
+    /// scan over eta and dp/dx: at dp/dx = 1e15 Pa/m the iteration without the shortening
+    /// stopped with an error; with it the column converges, the law holding at every point
+    /// (1e-9 relative; the iteration's tolerance is 1e-10 in ln eta).
+    #[test]
+    fn a_trial_step_where_the_law_fails_is_shortened() {
+        let rule = Lobatto::new(7);
+        let laws = Carreau { g: 4.5e6, n: 0.01 };
+        let (t, rho, eta) = ([350.0; 7], [850.0; 7], [1e10; 7]);
+        let col = Column {
+            h: 1e-7,
+            dpdx: 1e15,
+            dpdy: 0.0,
+            u1: 2.0,
+            u2: 1.0,
+        };
+        let opts = ShearOptions {
+            tol: 1e-10,
+            max_iter: 200,
+        };
+        let s = shear_thinning_profile(&rule, &laws, &col, 1e9, &t, &eta, &rho, opts).unwrap();
+        assert!(s.converged, "{s:?}");
+        let f = &s.profile;
+        for k in 0..7 {
+            let gamma = f.tau_zx[k].abs() / s.eta_eff[k];
+            let law = laws.effective_viscosity(eta[k], gamma, 0.0, 0.0);
+            assert!(rel(s.eta_eff[k], law) < 1e-9, "{} against {law}", s.eta_eff[k]);
+        }
     }
 
     /// A Carreau law (eta_eff = eta [1 + (eta gamma / G)^2]^((n - 1)/2)) in the tests.
