@@ -905,7 +905,11 @@ mod tests {
         for k in 0..7 {
             let gamma = f.tau_zx[k].abs() / s.eta_eff[k];
             let law = laws.effective_viscosity(eta[k], gamma, 0.0, 0.0);
-            assert!(rel(s.eta_eff[k], law) < 1e-9, "{} against {law}", s.eta_eff[k]);
+            assert!(
+                rel(s.eta_eff[k], law) < 1e-9,
+                "{} against {law}",
+                s.eta_eff[k]
+            );
         }
     }
 
