@@ -38,24 +38,16 @@ heat_capacity = 2000.0
 points_across_film = 7
 """
 
-LINE = """title = "thermal scan: line"
-kind = "ehl"
 
-[body1]
-shape = "roller"
-radius = 0.02
-length = inf
-youngs_modulus = 206e9
-poisson_ratio = 0.3
+def body(n, geometry):
+    """A steel body's table: `geometry` its shape lines."""
+    return f"[body{n}]\n{geometry}youngs_modulus = 206e9\npoisson_ratio = 0.3\n\n"
 
-[body2]
-shape = "roller"
-radius = 0.02
-length = inf
-youngs_modulus = 206e9
-poisson_ratio = 0.3
 
-[load]
+ROLLER = 'shape = "roller"\nradius = 0.02\nlength = inf\n'
+
+LINE = ('title = "thermal scan: line"\nkind = "ehl"\n\n' + body(1, ROLLER) + body(2, ROLLER)
+        + """[load]
 max_hertz_pressure = 1.0e9
 
 [motion]
@@ -68,23 +60,11 @@ ny = 1
 x_min = -4.0
 x_max = 1.5
 
-""" + COMMON
+""" + COMMON)
 
-BALL = """title = "thermal scan: ball"
-kind = "ehl"
-
-[body1]
-shape = "ball"
-radius = 0.0127
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[body2]
-shape = "flat"
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[load]
+BALL = ('title = "thermal scan: ball"\nkind = "ehl"\n\n'
+        + body(1, 'shape = "ball"\nradius = 0.0127\n') + body(2, 'shape = "flat"\n')
+        + """[load]
 force = 30.0
 
 [motion]
@@ -99,7 +79,7 @@ x_max = 1.5
 y_min = -2.5
 y_max = 2.5
 
-""" + COMMON
+""" + COMMON)
 
 EYRING = 'lubricant.rheology={model="eyring",eyring_stress=5e6}'
 CARREAU = ('lubricant.rheology={model="carreau",shear_modulus=4.5e6,power_law_index=0.57,'
