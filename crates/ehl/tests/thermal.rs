@@ -1036,8 +1036,8 @@ fn swapping_the_surface_speeds_mirrors_the_thermal_solution() {
 }
 
 /// A line at p_h = 1 GPa and 5 m/s (R = 20 mm, steel, eta0 = 0.05 Pa s, alpha = 20 /GPa,
-/// Roelands with S0 = 1.1; 256 cells, L = 0.36): its pressure spike is one or two cells wide.
-/// Before the compression work took the limited gradient (`film_energy::compression_gradient`),
+/// Roelands with S0 = 1.1; 256 cells, L = 0.37): its pressure spike is one or two cells wide.
+/// Before the compression work capped its gradient (`film_energy::compression_gradient`),
 /// the spike's cells ran hot or cold by hundreds of kelvin between outer iterations and these
 /// runs ended with a failed temperature solve: the Newtonian oil at SRR 0.5 and Carreau
 /// (G = 4.5 MPa, n = 0.57, Lambda = 0.06) at SRR -0.5, whose mirror +0.5 settled. Now each
