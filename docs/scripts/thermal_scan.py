@@ -5,7 +5,7 @@ is run once with `ehl run`; the table (Markdown, on stdout) says whether it sett
 many outer iterations, and its friction, central film and largest film temperature.
 
     cargo build --release -p ehl-cli
-    python docs/scripts/thermal_scan.py target/release/ehl out/thermal-scan
+    python3 docs/scripts/thermal_scan.py target/release/ehl out/thermal-scan
 
 About a minute on 2 cores. Standard library only.
 """

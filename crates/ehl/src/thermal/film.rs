@@ -464,8 +464,10 @@ pub fn shear_thinning_profile<L: FilmLaws + ?Sized>(
 /// as its value), tau_k = (tau_a + z_k dp/dx, tau_b + z_k dp/dy) with tau_a, tau_b functions of
 /// all y through F0 = h sum w_j e^{-y_j} and F1 = h^2 sum w_j zeta_j e^{-y_j}; a halving line
 /// search on max |R|. A Newtonian law gives R = 0 at y = ln eta: 0 iterations.
-/// Non-convergence within `opts.max_iter` (or where no step along the Newton direction can be
-/// evaluated) is reported in the result, not as an error; a start the law fails at is an error.
+/// Non-convergence within `opts.max_iter` (or where the line search's shortest step, below
+/// 1e-3 of the full one, cannot be evaluated either) is reported in the result, not as an
+/// error; a start the law fails at is an error. (Before 2026-11-29 such a stall was an error,
+/// which sent a thermal run to its retry at more points across the film.)
 ///
 /// `eta` is the low-shear viscosity at the points (Pa s), `rho` the density (kg/m^3), `p` the
 /// pressure (Pa), `t` the temperature at the points (K).

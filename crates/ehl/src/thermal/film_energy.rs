@@ -809,7 +809,9 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 /// central difference) where the two agree in sign.
 ///
 /// The two are one quantity at the fixed point (the flux-driven gradient carries the flux the
-/// Reynolds solve gives), and the cap leaves the fixed point alone. Between outer iterations,
+/// Reynolds solve gives), and the cap leaves the fixed point alone. A flux-driven column's
+/// gradient is the pressure's times the ratio of the lagged flow factor to the column's
+/// current one, so the two share their sign and the cap holds that ratio to 2. Between outer iterations,
 /// with the Reynolds factors lagged, they part. At a sharp pressure spike the flux-driven one
 /// overshoots: measured on a line at p_h = 1 GPa and 5 m/s (256 cells, the spike one or two
 /// cells wide), a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with a failed
