@@ -804,7 +804,9 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 }
 
 /// The pressure gradient along x (Pa/m) of a column's compression work
-/// (T / rho) (d rho / dT) u . grad p: the column's flux-driven gradient `flux_driven`, held to
+/// -(T / rho) (d rho / dT) (u dp/dx + v dp/dy) (W/m^3; the energy equation of thermal EHL,
+/// e.g. Yang & Wen, J. Tribol. 112 (1990) 631; Habchi et al., Tribol. Int. 41 (2008) 1051;
+/// [`LineCoefficients::compression`]): the column's flux-driven gradient `flux_driven`, held to
 /// at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's own `pressure` (the line's
 /// central difference) where the two agree in sign.
 ///
@@ -830,7 +832,7 @@ pub fn compression_gradient(flux_driven: f64, pressure: f64) -> f64 {
 }
 
 /// How far the flux-driven gradient of [`compression_gradient`] may exceed the pressure's own
-/// (a factor of two). Measured (docs/thermal.md, "Robustness beyond the examples"): 1 (the
+/// (dimensionless: a factor of two). Measured (docs/thermal.md, "Robustness beyond the examples"): 1 (the
 /// smaller of the two, minmod) slowed the pure-rolling thesis roller 256 x 512 from 6 to 8
 /// outer iterations (+30 % time); 1.2 and 2 kept its 6, both fixed the Newtonian and Carreau
 /// lines above and lost the same one run of the thermal map (SRR 0.3 at L = 22); 1.2 also
