@@ -805,7 +805,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 
 /// The pressure gradient along x (Pa/m) of a column's compression work
 /// -(T / rho) (d rho / dT) (u dp/dx + v dp/dy) (W/m^3; the energy equation of thermal EHL,
-/// e.g. Yang & Wen, J. Tribol. 112 (1990) 631; Habchi et al., Tribol. Int. 41 (2008) 1051;
+/// e.g. Yang & Wen, J. Tribol. 112 (1990) 631; Habchi et al. 2008, thermal point contacts;
 /// [`LineCoefficients::compression`]): the column's flux-driven gradient `flux_driven`, held to
 /// at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's own `pressure` (the line's
 /// central difference) where the two agree in sign.
