@@ -61,7 +61,8 @@ pub struct ThermalParams {
     pub max_outer: usize,
     /// under-relaxation of the Reynolds factors from the second outer iteration on (1: none):
     /// the mixing parameter of the Anderson steps (1 instead where the last two estimates of
-    /// the coupling's contraction were at most 0.2, see `mixing_parameter`); a plain relaxed
+    /// the coupling's contraction were at most 0.2, or near the linear regime the last one at
+    /// most 0.5, see `mixing_parameter`); a plain relaxed
     /// iteration (`anderson` = 0) halves it, down to `min_relaxation`, whenever the
     /// film-temperature change grows, and so does a Newton solve that needed a shorter step
     pub relaxation: f64,
