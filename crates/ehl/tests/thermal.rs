@@ -501,6 +501,51 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
     assert!(!note.contains("note: L is above"), "{note}");
 }
 
+/// A thermal run with the Eyring law that fails says what the robustness scan found
+/// (docs/thermal.md, "Left open"): the example line with an Eyring oil, stopped after 2 outer
+/// iterations so that it cannot settle (~0.1 s), names the Eyring law and the Carreau law that
+/// settled; the same run with its Carreau oil, and the Eyring run once settled (the example's
+/// speed and load, 256 cells), say nothing of it. The hint itself: only for a failed,
+/// not cancelled, thermal Eyring run.
+#[test]
+fn a_failed_thermal_eyring_run_names_the_known_limit() {
+    let eyring = r#"lubricant.rheology={model="eyring",eyring_stress=5e6}"#;
+    let line = |sets: &[&str]| {
+        let mut all: Vec<String> = vec!["grid.nx=256".into()];
+        all.extend(sets.iter().map(|s| s.to_string()));
+        parse_str(THERMAL, "ehl_thermal_line.toml", &all).unwrap()
+    };
+    let hint = "thermal runs with the Eyring law did not settle";
+    let s = solve(&line(&[eyring, "thermal.max_iterations=2"]));
+    assert!(!s.summary.converged);
+    assert!(
+        s.summary.termination.contains(hint),
+        "{}",
+        s.summary.termination
+    );
+    let s = solve(&line(&["thermal.max_iterations=2"]));
+    assert!(!s.summary.converged);
+    assert!(
+        !s.summary.termination.contains(hint),
+        "{}",
+        s.summary.termination
+    );
+    let c = line(&[eyring]);
+    let s = solve(&c);
+    assert!(s.summary.converged, "{}", s.summary.termination);
+    assert!(
+        !s.summary.termination.contains(hint),
+        "{}",
+        s.summary.termination
+    );
+    use ehl::run::thermal::rheology_hint;
+    assert!(rheology_hint(&c, false, "thermal fixed point not settled").is_some());
+    assert!(rheology_hint(&c, true, "converged").is_none());
+    assert!(rheology_hint(&c, false, "cancelled").is_none());
+    let carreau = parse_str(THERMAL, "ehl_thermal_line.toml", &[]).unwrap();
+    assert!(rheology_hint(&carreau, false, "thermal fixed point not settled").is_none());
+}
+
 /// The fixed point stops within the tolerance it states: on the Roelands-Carreau example line
 /// (`ehl_thermal_line.toml`: 512 cells, SRR 0.3) at its own speed (L = 0.75) and at
 /// U = 2.2e-10 (L = 6.8), the default stop (0.05 K, films and the Reynolds factors' residual

@@ -460,9 +460,10 @@ pub(super) fn solve(
             steps + 1
         )
     };
-    if let Some(hint) = super::thermal::loading_hint(case, summary.converged, &summary.termination)
-    {
-        summary.termination.push_str(&hint);
+    for hint in [super::thermal::loading_hint, super::thermal::rheology_hint] {
+        if let Some(hint) = hint(case, summary.converged, &summary.termination) {
+            summary.termination.push_str(&hint);
+        }
     }
     if let Some(last_row) = record.timeline.last() {
         if let Some(f) = last_row.friction_coefficient {
