@@ -739,15 +739,15 @@ const LOOSE_FILM_MAX: f64 = 0.1;
 /// two in a row it took its 52. With 0.35 for one, the thermal map lost two cases.
 ///
 /// Near the linear regime (`near_linear`: the factors' residual of the first update and of
-/// this one at most [`NEAR_LINEAR_RESIDUAL`], no Newton solve that needed a shorter step and no
-/// restart of the mixing since) one estimate of at most [`NEAR_LINEAR_CONTRACTION`] suffices:
+/// this one at most [`NEAR_LINEAR_RESIDUAL`], and since the start no Newton solve that needed
+/// a shorter step, no restart of the mixing for lack of progress and no coupled-Newton polish)
+/// one estimate of at most [`NEAR_LINEAR_CONTRACTION`] suffices:
 /// the step it was measured along is then small, so the estimate is the map's local
 /// contraction along it, and for a linear map with a positive eigenvalue c < 1 the undamped
 /// step reduces the error by c, the step damped by w only by 1 - w (1 - c) (0.75 at c = 0.5,
 /// w = 0.5). A norm ratio cannot tell c from -c (for -0.5 the damped step is the better, 0.25)
 /// and sees one direction only, so the rule rests on the cases measured as much as on this
-/// argument. The thesis
-/// roller 256 x 512 in pure rolling (first residual 0.093, estimates 0.21, 0.034, 0.090):
+/// argument. The thesis roller 256 x 512 in pure rolling (first residual 0.093, estimates 0.21, 0.034, 0.090):
 /// 6 -> 5 outer iterations; `ehl_thermal_ball.toml` (0.16): 5 -> 4. The coupled cases of the
 /// thermal map start from residuals of 1 to 4.5 and are not affected.
 fn mixing_parameter(
