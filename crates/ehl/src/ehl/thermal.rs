@@ -747,9 +747,9 @@ const LOOSE_FILM_MAX: f64 = 0.1;
 /// step reduces the error by c, the step damped by w only by 1 - w (1 - c) (0.75 at c = 0.5,
 /// w = 0.5). A norm ratio cannot tell c from -c (for -0.5 the damped step is the better, 0.25)
 /// and sees one direction only, so the rule rests on the cases measured as much as on this
-/// argument. The thesis roller 256 x 512 in pure rolling (first residual 0.093, estimates 0.21, 0.034, 0.090):
-/// 6 -> 5 outer iterations; `ehl_thermal_ball.toml` (0.16): 5 -> 4. The coupled cases of the
-/// thermal map start from residuals of 1 to 4.5 and are not affected.
+/// argument. The thesis roller 256 x 512 in pure rolling (first residual 0.093, estimates
+/// 0.21, 0.034, 0.090): 6 -> 5 outer iterations; `ehl_thermal_ball.toml` (0.16): 5 -> 4. The
+/// coupled cases of the thermal map start from residuals of 1 to 4.5 and are not affected.
 fn mixing_parameter(
     thermal: &ThermalParams,
     contraction: Option<f64>,
