@@ -506,7 +506,7 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
 /// iterations so that it cannot settle (~0.1 s), names the Eyring law and the Carreau law that
 /// settled; the same run with its Carreau oil, and the Eyring run once settled (the example's
 /// speed and load, 256 cells), say nothing of it. The hint itself: only for a failed,
-/// not cancelled, thermal Eyring run.
+/// not cancelled, thermal Eyring run. `ehl check` notes an Eyring case at 1 GPa, not at 0.5.
 #[test]
 fn a_failed_thermal_eyring_run_names_the_known_limit() {
     let eyring = r#"lubricant.rheology={model="eyring",eyring_stress=5e6}"#;
@@ -544,6 +544,14 @@ fn a_failed_thermal_eyring_run_names_the_known_limit() {
     assert!(rheology_hint(&c, false, "cancelled").is_none());
     let carreau = parse_str(THERMAL, "ehl_thermal_line.toml", &[]).unwrap();
     assert!(rheology_hint(&carreau, false, "thermal fixed point not settled").is_none());
+    // and `ehl check` notes it beforehand, from EYRING_NOTE_PRESSURE on (the example line's
+    // Hertz pressure is 1.0 GPa)
+    let note = |c: &Case| ehl::reference::check::check_report(c).to_string();
+    let said = "note: with the Eyring law near 1 GPa and above";
+    assert!(note(&c).contains(said), "{}", note(&c));
+    assert!(!note(&carreau).contains(said));
+    let low = line(&[eyring, "load.dimensionless_load=3.25e-5"]); // 0.5 GPa
+    assert!(!note(&low).contains(said), "{}", note(&low));
 }
 
 /// The fixed point stops within the tolerance it states: on the Roelands-Carreau example line

@@ -93,7 +93,15 @@ pub struct ThermalCheck {
     pub peclet: [f64; 2],
     /// collocation points across the film (`thermal.points_across_film`)
     pub points_across_film: usize,
+    /// the lubricant follows the Eyring law (`ehl check` notes it at a Hertz pressure of at
+    /// least [`EYRING_NOTE_PRESSURE`])
+    pub eyring: bool,
 }
+
+/// `ehl check` notes a thermal case with the Eyring law from this Hertz pressure (Pa) on: in
+/// the robustness scan of docs/thermal.md thermal Eyring runs (tau_0 = 5 MPa) settled at
+/// 0.5 GPa and 6 of 11 did not at 1-2 GPa (lines at 1 and 2 GPa, a ball at 1.2 GPa).
+pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges
@@ -323,6 +331,9 @@ pub fn check_report(case: &Case) -> CheckReport {
             beta,
             loading: l,
             points_across_film: tl.points_across_film,
+            eyring: case.lubricant.as_ref().is_some_and(|l| {
+                matches!(l.rheology, crate::lubricant::Rheology::Eyring { .. })
+            }),
             murch_wilson: super::thermal::murch_wilson(l),
             gupta: super::thermal::gupta(l, srr, report.hertz.ph / report.hertz.e_red),
             peclet: [
@@ -614,6 +625,12 @@ impl fmt::Display for CheckReport {
                 format!("{}, {}", fixed(t.peclet[0], 2), fixed(t.peclet[1], 2)),
                 "",
             )?;
+            if t.eyring && self.hertz.ph >= EYRING_NOTE_PRESSURE {
+                writeln!(
+                    f,
+                    "  note: with the Eyring law near 1 GPa and above some thermal runs did not settle (the flow factors at the outlet's pressure spike flip between outer iterations); the Carreau law with a limiting shear stress settled in the same contacts (docs/thermal.md, \"Left open\")"
+                )?;
+            }
             if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
                 writeln!(
                     f,
