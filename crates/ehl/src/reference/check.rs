@@ -331,9 +331,10 @@ pub fn check_report(case: &Case) -> CheckReport {
             beta,
             loading: l,
             points_across_film: tl.points_across_film,
-            eyring: case.lubricant.as_ref().is_some_and(|l| {
-                matches!(l.rheology, crate::lubricant::Rheology::Eyring { .. })
-            }),
+            eyring: case
+                .lubricant
+                .as_ref()
+                .is_some_and(|l| matches!(l.rheology, crate::lubricant::Rheology::Eyring { .. })),
             murch_wilson: super::thermal::murch_wilson(l),
             gupta: super::thermal::gupta(l, srr, report.hertz.ph / report.hertz.e_red),
             peclet: [
