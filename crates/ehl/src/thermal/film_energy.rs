@@ -803,25 +803,25 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     Ok((converged, solves))
 }
 
-/// The pressure gradient along x (Pa/m) of a column's compression work
-/// -(T / rho) (d rho / dT) (u dp/dx + v dp/dy) (W/m^3; the energy equation of thermal EHL,
-/// e.g. Yang & Wen, J. Tribol. 112 (1990) 631; Habchi et al. 2008, thermal point contacts;
+/// The pressure gradient along x (Pa/m) of a column's compression work -(T / rho) (d rho / dT)
+/// (u dp/dx + v dp/dy) (W/m^3; the energy equation of thermal EHL, e.g. Yang & Wen, J. Tribol.
+/// 112 (1990) 631; Habchi et al. 2008, thermal point contacts;
 /// [`LineCoefficients::compression`]): the column's flux-driven gradient `flux_driven`, held to
-/// at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's own `pressure` (the line's
-/// central difference) where the two agree in sign.
+/// at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's own `pressure` (the line's central
+/// difference) where the two agree in sign.
 ///
 /// The two are one quantity at the fixed point (the flux-driven gradient carries the flux the
 /// Reynolds solve gives), and the cap leaves the fixed point alone. A flux-driven column's
-/// gradient is the pressure's times the ratio of the lagged flow factor to the column's
-/// current one, so the two share their sign and the cap holds that ratio to 2. Between outer iterations,
-/// with the Reynolds factors lagged, they part. At a sharp pressure spike the flux-driven one
-/// overshoots: measured on a line at p_h = 1 GPa and 5 m/s (256 cells, the spike one or two
-/// cells wide), a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with a failed
-/// temperature solve, the spike's cells heated or cooled by hundreds of kelvin; capped, both
-/// settle. In the thick, hot inlet of a high thermal loading the flux-driven gradient is the
-/// steadier one (it falls as the oil thins): the pressure's own gradient alone settled 16 of
-/// the 20 runs of the thermal map of docs/thermal.md instead of 19 (docs/thermal.md,
-/// "Robustness beyond the examples").
+/// gradient is the pressure's times the ratio of the lagged flow factor to the column's current
+/// one, so the two share their sign and the cap holds that ratio to 2. Between outer
+/// iterations, with the Reynolds factors lagged, they part. At a sharp pressure spike the
+/// flux-driven one overshoots: measured on a line at p_h = 1 GPa and 5 m/s (256 cells, the
+/// spike one or two cells wide), a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with
+/// a failed temperature solve, the spike's cells heated or cooled by hundreds of kelvin;
+/// capped, both settle. In the thick, hot inlet of a high thermal loading the flux-driven
+/// gradient is the steadier one (it falls as the oil thins): the pressure's own gradient alone
+/// settled 16 of the 20 runs of the thermal map of docs/thermal.md instead of 19
+/// (docs/thermal.md, "Robustness beyond the examples").
 pub fn compression_gradient(flux_driven: f64, pressure: f64) -> f64 {
     if flux_driven * pressure > 0.0 && flux_driven.abs() > COMPRESSION_GRADIENT_CAP * pressure.abs()
     {
@@ -832,11 +832,11 @@ pub fn compression_gradient(flux_driven: f64, pressure: f64) -> f64 {
 }
 
 /// How far the flux-driven gradient of [`compression_gradient`] may exceed the pressure's own
-/// (dimensionless: a factor of two). Measured (docs/thermal.md, "Robustness beyond the examples"): 1 (the
-/// smaller of the two, minmod) slowed the pure-rolling thesis roller 256 x 512 from 6 to 8
-/// outer iterations (+30 % time); 1.2 and 2 kept its 6, both fixed the Newtonian and Carreau
-/// lines above and lost the same one run of the thermal map (SRR 0.3 at L = 22); 1.2 also
-/// settled the Eyring line at SRR 0.5, which 1.5 and 2 did not.
+/// (dimensionless: a factor of two). Measured (docs/thermal.md, "Robustness beyond the
+/// examples"): 1 (the smaller of the two, minmod) slowed the pure-rolling thesis roller
+/// 256 x 512 from 6 to 8 outer iterations (+30 % time); 1.2 and 2 kept its 6, both fixed the
+/// Newtonian and Carreau lines above and lost the same one run of the thermal map (SRR 0.3 at
+/// L = 22); 1.2 also settled the Eyring line at SRR 0.5, which 1.5 and 2 did not.
 pub const COMPRESSION_GRADIENT_CAP: f64 = 2.0;
 
 /// Per point, what a column loses per unit zeta other than by the x-flow (kg/(m^2 s)): the
