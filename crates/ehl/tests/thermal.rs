@@ -131,21 +131,30 @@ fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
         );
     }
     // the friction: the same Newtonian film, integrated from the profile (thermal) or the
-    // closed-form Couette + Poiseuille stress (isothermal): 1e-3 (different quadratures of the
-    // same stress; the profile's is exact for a Newtonian film)
+    // closed-form Couette + Poiseuille stress (isothermal), both exact for a Newtonian film:
+    // what parts them is the film, within 1e-4 (above), the Couette stress going as 1/h, and
+    // the 3e-4 K rise (beta dT ~ 1e-5 on the viscosity): 1e-4 (measured 1.5e-5)
     let (fi, ft) = (
         iso.summary.friction_coefficient.unwrap(),
         th.summary.friction_coefficient.unwrap(),
     );
     assert!(
-        (ft / fi - 1.0).abs() < 1e-3,
+        (ft / fi - 1.0).abs() < 1e-4,
         "friction thermal {ft} vs isothermal {fi}"
     );
 }
 
-/// Pure rolling, a Newtonian oil at low speed (U = 7.3e-12, a tenth of the table's: thermal
-/// loading L = 0.002): the thermal film is within 1 % of the isothermal one (Murch & Wilson:
-/// 1 - 0.254 L^0.62 = 0.5 % reduction), and thinner, never thicker.
+/// Pure rolling, a Newtonian oil at low speed (U = 7.3e-12, a tenth of the table's; thermal
+/// loading L = eta0 beta u_e^2 / k_f = 0.0075 with the Roelands beta at the inlet, 0.041 1/K):
+/// the issue asks the film to change by well under 1 %. The thermal film is thinner, never
+/// thicker; by less than 1 %; by no more than Murch & Wilson's fit says (1.2 % here: our
+/// reduction is below the fits', docs/thermal.md "Known disagreement"); and by at least half
+/// of what an independent Grubin inlet analysis with the exact local thermal Poiseuille
+/// column gives at the same L (`reference::thermal::grubin_thermal_ratio`, heated
+/// everywhere; measured: 0.64 % against the fit's 1.2 % and Grubin's 0.15 %): our solver under that analysis's own assumptions lies within a quarter of
+/// its reduction (`film_reduction_against_a_thermal_grubin_inlet`), and the physics it adds
+/// here (Roelands, compression and expansion, warming surfaces) adds reduction; a thermal
+/// solve that left the film alone fails.
 #[test]
 fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
     let sets = [
@@ -154,16 +163,35 @@ fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
         "motion.dimensionless_speed=7.3e-12",
     ];
     let iso = solve(&case("", &sets));
-    let th = solve(&case("[thermal]\n", &sets));
+    let c = case("[thermal]\n", &sets);
+    let th = solve(&c);
     assert!(th.summary.converged, "{}", th.summary.termination);
     let (a, b) = (
         iso.summary.central_film_m.unwrap(),
         th.summary.central_film_m.unwrap(),
     );
     let r = b / a;
+    let (lub, mo, tl) = (
+        c.lubricant.as_ref().unwrap(),
+        c.motion.as_ref().unwrap(),
+        &c.thermal.as_ref().unwrap().lubricant,
+    );
+    let l = ehl::reference::thermal::thermal_loading(
+        lub.viscosity,
+        tl.viscosity_temperature.beta,
+        mo.entrainment_speed,
+        tl.conductivity,
+    );
+    let mw = ehl::reference::thermal::murch_wilson(l);
+    let grubin = ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, 7.3e-12, 3500.0, l, None);
+    println!("low speed: L {l:.4}, ours {r:.5}, Murch-Wilson {mw:.5}, Grubin {grubin:.5}");
     assert!(
-        r <= 1.0 + 1e-6 && r > 0.99,
-        "thermal / isothermal central film {r}"
+        r <= 1.0 + 1e-6 && 1.0 - r < 0.01 && 1.0 - r <= 1.0 - mw,
+        "L {l:.4}: thermal / isothermal central film {r}, Murch-Wilson {mw}"
+    );
+    assert!(
+        1.0 - r >= 0.5 * (1.0 - grubin),
+        "L {l:.4}: thermal / isothermal central film {r}, Grubin inlet {grubin}"
     );
 }
 
@@ -228,8 +256,8 @@ fn the_thermal_traction_curve_peaks_and_falls() {
         iso[0]
     );
     assert!(
-        thermal[1] > thermal[2] && thermal[2] > thermal[3],
-        "thermal f at SRR 0.1, 0.3, 1.0: {thermal:?}"
+        thermal[0] < thermal[1] && thermal[1] > thermal[2] && thermal[2] > thermal[3],
+        "thermal f at SRR 0.01, 0.1, 0.3, 1.0 must rise, then fall: {thermal:?}"
     );
     assert!(
         iso.windows(2).all(|w| w[1] >= w[0]),
@@ -629,7 +657,7 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 
 /// In pure rolling the thermal film is thinner than the isothermal one, more so as L grows,
 /// as Murch & Wilson's and Gupta et al.'s factors say. **Known disagreement**, decomposed in
-/// docs/thermal.md: our reduction 1 - h_t/h_i is 0.57-0.65 of the two fits' mean at L = 0.13
+/// docs/thermal.md: our reduction 1 - h_t/h_i is 0.50 and 0.66 of the two fits' mean at L = 0.13
 /// and 0.55. It does not change with the inlet extent, the points across the film or the grid.
 /// A study (not in the suite) finds:
 /// * our local flow factor is within 1 % of the exact local thermal Poiseuille solution;
@@ -641,13 +669,26 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 /// points across the film) it is 0.81 of the fits' mean at both.
 ///
 /// The bounds below record the present state: 0.45..1.1 of the fits' mean. A closer agreement
-/// keeps the test passing; losing half of the present reduction fails it.
+/// keeps the test passing; losing half of the present reduction fails it. At L = 0.13 and
+/// 0.55, where the Grubin inlet is checked against our solver under its own assumptions, the
+/// reduction must also be at least 0.75 of that Grubin's (heated for x > -2 b): under those
+/// assumptions ours is within a quarter of it (`film_reduction_against_a_thermal_grubin_inlet`),
+/// and the physics added here (compression, expansion, warming surfaces) adds reduction
+/// (measured 3.7 % and 10.5 % against 2.2 % and 7.4 %).
 #[test]
 fn film_reduction_against_the_inlet_heating_fits() {
-    let all: Vec<_> = [3.6e-11, 7.3e-11, 2.2e-10, 3.1e-10]
-        .iter()
-        .map(|&u| reduction(u, 256))
-        .collect();
+    let speeds = [3.6e-11, 7.3e-11, 2.2e-10, 3.1e-10];
+    let all: Vec<_> = speeds.iter().map(|&u| reduction(u, 256)).collect();
+    for (&u, &(r, l, ..)) in speeds.iter().zip(&all).take(2) {
+        let grubin =
+            ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, u, 3500.0, l, Some(-2.0));
+        assert!(
+            1.0 - r >= 0.75 * (1.0 - grubin),
+            "L {l:.3}: reduction {:.4} against the Grubin inlet's {:.4}",
+            1.0 - r,
+            1.0 - grubin
+        );
+    }
     for w in all.windows(2) {
         let ((r1, l1, ..), (r2, l2, ..)) = (w[0], w[1]);
         assert!(
@@ -761,8 +802,10 @@ fn a_conductivity_growing_with_pressure_cools_the_film_as_conduction_says() {
 /// * the centre rows' film temperature must not move (1e-3 K; measured 5e-5), the end rows'
 ///   must (more than 0.05 K; measured 0.23 K where the film rises by ~1 K);
 /// * the oil leaving through the ends carries enthalpy out: the heat convected grows (measured
-///   0.3456 -> 0.3491 W), by less than c x the side leakage x the largest rise, which no oil
-///   can exceed (3.6 W);
+///   0.3456 -> 0.3491 W), by less than c x the side leakage x the end rows' largest mid-film
+///   rise (1.5 W), which no oil leaving there can exceed: a physical ceiling, not a
+///   tolerance (most of the leakage leaves from the cool inlet); the energy balance below is
+///   the close check;
 /// * the contact's energy balance still closes (1 %; measured 1.5e-4).
 ///
 /// Without the side flow wired into the contact, the first two fail.
@@ -803,16 +846,27 @@ fn the_side_flow_moves_heat_at_the_roller_ends_only() {
         without.summary.heat_convected_w.unwrap(),
     );
     let leak = with.summary.side_leakage_kg_s.unwrap();
-    let rise = with.summary.max_film_temperature_k.unwrap() - 313.0;
+    // the oil leaving through the ends is at most as warm as the end rows' mid-film
+    let end_rise = [0, ny - 1]
+        .iter()
+        .flat_map(|&j| (0..nx).map(move |i| a[j * nx + i] - 313.0))
+        .filter(|d| d.is_finite())
+        .fold(0.0f64, f64::max);
+    let cp = parse_str(&text, file, &[])
+        .unwrap()
+        .thermal
+        .unwrap()
+        .lubricant
+        .heat_capacity;
+    let ceiling = cp * leak * end_rise;
     println!(
         "side flow: centre rows {centre:.1e} K, end rows {ends:.3} K; heat convected {co:.4} -> \
-         {cw:.4} W (bound {:.2} W)",
-        2000.0 * leak * rise
+         {cw:.4} W (ceiling {ceiling:.2} W)"
     );
     assert!(centre < 1e-3, "centre rows moved by {centre} K");
     assert!(ends > 0.05, "end rows moved by {ends} K only");
     assert!(cw > co, "heat convected {co} -> {cw} W");
-    assert!(cw - co < 2000.0 * leak * rise, "{co} -> {cw} W");
+    assert!(cw - co < ceiling, "{co} -> {cw} W, ceiling {ceiling} W");
 }
 
 /// A finite roller (the thesis chapter 2 rollers, 128 x 64 cells, pure rolling) and a ball on
@@ -1254,8 +1308,9 @@ fn timeline(s: &Solution) -> &[ehl::solution::StepRecord] {
 /// Newtonian oil, the thermal groove passage at SRR 0.3 must follow the isothermal one step by
 /// step: the factors are 1 to round-off, so the squeeze term with the thermal density, the
 /// film's time derivatives and the per-step passes must leave pressure and film alone.
-/// Tolerances as in the steady test: 1e-4 on the films (the Newton tolerance), 1e-3 on the
-/// friction (two quadratures of the same Newtonian stress).
+/// Tolerances as in the steady test: 1e-4 on the films (the Newton tolerance) and on the
+/// friction (the Couette stress goes as 1/h; measured 8.5e-7 at worst over the steps), the
+/// largest film temperature within 1e-2 K of the inlet's.
 #[test]
 fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
     let sets = [NEWTONIAN, "motion.slide_to_roll=0.3"];
@@ -1297,7 +1352,7 @@ fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
             t.friction_coefficient.unwrap(),
         );
         assert!(
-            (ft / fi - 1.0).abs() < 1e-3,
+            (ft / fi - 1.0).abs() < 1e-4,
             "step {}: friction thermal {ft} vs isothermal {fi}",
             t.step
         );
@@ -1358,14 +1413,15 @@ fn a_smooth_thermal_transient_stays_on_its_steady_start() {
 
 /// The groove passing through the thermal line at SRR 0.3 (Carreau, the example's oil):
 /// * every step converges, and its energy balance (generated = into the bodies + convected +
-///   stored in the film) closes within 1 % (issue 13; measured <= 0.2 % on 256 cells);
+///   stored in the film) closes within 1 % (issue 13; measured 0.27 % at worst on these 128 cells);
 /// * so does its mass balance, the steady start's included, within 1e-4 (the Newton and the
 ///   factors' tolerances; measured 4e-7 on the steps; the start's, taken with the isothermal
 ///   coefficients before 2026-11-26, was 0.8 % off);
-/// * the thermal friction is below the isothermal one at every step (0.3 is past the thermal
-///   curve's peak: the steady thermal f is 0.31 of the isothermal at this SRR);
-/// * the film's enthalpy changes while the groove is in the contact (`heat_stored_w` non-zero)
-///   and the film temperature moves with it.
+/// * the thermal friction is below the isothermal one at every step (measured 0.87-0.92 of
+///   it over the passage);
+/// * the film's enthalpy changes while the groove is in the contact (`heat_stored_w` above
+///   1e-3 of the heat generated at some step; measured 4.2e-2) and the film temperature moves
+///   with it (its largest value by more than 1 K over the passage; measured 349.5-352.0 K).
 #[test]
 fn a_groove_passes_through_the_thermal_line() {
     let sets = ["motion.slide_to_roll=0.3"];
