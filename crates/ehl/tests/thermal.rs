@@ -171,19 +171,9 @@ fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
         th.summary.central_film_m.unwrap(),
     );
     let r = b / a;
-    let (lub, mo, tl) = (
-        c.lubricant.as_ref().unwrap(),
-        c.motion.as_ref().unwrap(),
-        &c.thermal.as_ref().unwrap().lubricant,
-    );
-    let l = ehl::reference::thermal::thermal_loading(
-        lub.viscosity,
-        tl.viscosity_temperature.beta,
-        mo.entrainment_speed,
-        tl.conductivity,
-    );
+    let l = ehl::reference::check::case_thermal_loading(&c).unwrap();
     let mw = ehl::reference::thermal::murch_wilson(l);
-    let grubin = ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, 7.3e-12, 3500.0, l, None);
+    let grubin = grubin_for(&c, None);
     println!("low speed: L {l:.4}, ours {r:.5}, Murch-Wilson {mw:.5}, Grubin {grubin:.5}");
     assert!(
         r <= 1.0 + 1e-6 && 1.0 - r < 0.01 && 1.0 - r <= 1.0 - mw,
@@ -299,7 +289,7 @@ fn the_thermal_line_converges_with_the_grid() {
 fn film_reduction_sweep() {
     for u in [3.6e-11, 7.3e-11, 1.1e-10, 1.55e-10, 2.2e-10, 3.1e-10] {
         for nx in [256, 512] {
-            let (r, l, mw, gu) = reduction(u, nx);
+            let (r, l, mw, gu, _) = reduction(u, nx);
             println!(
                 "U {u:e} nx {nx}: L {l:.3}: thermal/isothermal {r:.4}, Murch-Wilson {mw:.4}, Gupta {gu:.4}"
             );
@@ -627,7 +617,23 @@ fn the_thermal_fixed_point_stops_within_its_tolerance() {
 }
 
 /// (h_thermal / h_isothermal, L, Murch-Wilson, Gupta) at the dimensionless speed `u`.
-fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
+/// The Grubin inlet's h_thermal / h_isothermal (`reference::thermal::grubin_thermal_ratio`)
+/// for the line contact `c` at its thermal loading: W, U and G from the case (W = w / (E' R),
+/// U = eta0 u_e / (E' R), G = alpha E'); `x_heat` as there.
+fn grubin_for(c: &Case, x_heat: Option<f64>) -> f64 {
+    let (e, r) = (c.reduced_modulus(), c.reduced_radius());
+    let lub = c.lubricant.as_ref().unwrap();
+    let u = lub.viscosity * c.motion.as_ref().unwrap().entrainment_speed / (e * r);
+    ehl::reference::thermal::grubin_thermal_ratio(
+        c.load.force_per_length / (e * r),
+        u,
+        lub.pressure_viscosity_coefficient * e,
+        ehl::reference::check::case_thermal_loading(c).unwrap(),
+        x_heat,
+    )
+}
+
+fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64, f64) {
     let sets = [
         NEWTONIAN.to_string(),
         "motion.slide_to_roll=0.0".to_string(),
@@ -644,14 +650,14 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
         "{}",
         th.summary.termination
     );
-    let ue = c.motion.as_ref().unwrap().entrainment_speed;
-    let l = ehl::reference::thermal::thermal_loading(0.04, 0.03, ue, 0.14);
+    let l = ehl::reference::check::case_thermal_loading(&c).unwrap();
     let ph_e = iso.summary.hertz_pressure_pa / c.reduced_modulus();
     (
         th.summary.central_film_m.unwrap() / iso.summary.central_film_m.unwrap(),
         l,
         ehl::reference::thermal::murch_wilson(l),
         ehl::reference::thermal::gupta(l, 0.0, ph_e),
+        grubin_for(&c, Some(-2.0)),
     )
 }
 
@@ -677,11 +683,11 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64) {
 /// (measured 3.7 % and 10.5 % against 2.2 % and 7.4 %).
 #[test]
 fn film_reduction_against_the_inlet_heating_fits() {
-    let speeds = [3.6e-11, 7.3e-11, 2.2e-10, 3.1e-10];
-    let all: Vec<_> = speeds.iter().map(|&u| reduction(u, 256)).collect();
-    for (&u, &(r, l, ..)) in speeds.iter().zip(&all).take(2) {
-        let grubin =
-            ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, u, 3500.0, l, Some(-2.0));
+    let all: Vec<_> = [3.6e-11, 7.3e-11, 2.2e-10, 3.1e-10]
+        .iter()
+        .map(|&u| reduction(u, 256))
+        .collect();
+    for &(r, l, _, _, grubin) in all.iter().take(2) {
         assert!(
             1.0 - r >= 0.75 * (1.0 - grubin),
             "L {l:.3}: reduction {:.4} against the Grubin inlet's {:.4}",
@@ -696,7 +702,7 @@ fn film_reduction_against_the_inlet_heating_fits() {
             "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}"
         );
     }
-    for (r, l, mw, gu) in all {
+    for (r, l, mw, gu, _) in all {
         let ratio = (1.0 - r) / (1.0 - 0.5 * (mw + gu));
         assert!(
             (0.45..1.1).contains(&ratio),
@@ -742,10 +748,8 @@ fn film_reduction_against_a_thermal_grubin_inlet() {
             th.summary.termination
         );
         let ours = th.summary.central_film_m.unwrap() / iso.summary.central_film_m.unwrap();
-        let ue = c.motion.as_ref().unwrap().entrainment_speed;
-        let l = ehl::reference::thermal::thermal_loading(0.04, 0.03, ue, 0.14);
-        let grubin =
-            ehl::reference::thermal::grubin_thermal_ratio(1.3e-4, u, 3500.0, l, Some(-2.0));
+        let l = ehl::reference::check::case_thermal_loading(&c).unwrap();
+        let grubin = grubin_for(&c, Some(-2.0));
         println!("L {l:.4}: ours {ours:.4}, Grubin heated for x > -2b {grubin:.4}");
         assert!(
             (ours - grubin).abs() < 0.25 * (1.0 - grubin),
