@@ -135,7 +135,7 @@ fn symmetric_pits_give_a_symmetric_pressure() {
 }
 
 /// A bump (negative depth) is not clipped: it raises the pressure over it (by ~5 % here, a
-/// 1 um bump 0.3 b wide under a 10 GPa Hertz pressure). A gap clamped at zero, as before the
+/// 1 um bump 0.3 b wide under a 7.2 GPa Hertz pressure). A gap clamped at zero, as before the
 /// features were built, would leave the pressure unchanged.
 #[test]
 fn a_bump_raises_the_pressure() {
@@ -152,27 +152,36 @@ fn a_bump_raises_the_pressure() {
 }
 
 /// EHL with a pit on the standing body: converges, balances the load and conserves mass
-/// (inflow = outflow + side leakage, the solver's tolerance being on that balance).
+/// (inflow = outflow + side leakage: the flux form telescopes, so the imbalance is the sum of
+/// the cells' residuals, solved to 1e-6; 1e-5 of the inflow, measured 1.5e-7).
 #[test]
 fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
     let s = run(&(EHL.to_string() + &pit(2, 0.2e-3, 1e-3, 0.5e-6, 0.0, 0.0)));
     let smooth = run(EHL);
     assert!(s.summary.converged, "{}", s.summary.termination);
-    assert!(s.summary.load_error < 1e-4, "{}", s.summary.load_error);
+    // the load the written pressure carries, integrated here over its cells: 1e-6, the solve's
+    // tolerance on the same balance
+    let g = s.grid;
+    let carried = s.fields.pressure.iter().sum::<f64>() * g.dx * g.dy;
+    assert!((carried / 6000.0 - 1.0).abs() < 1e-6, "carried {carried} N");
     let (i, o, l) = (
         s.summary.mass_inflow_kg_s.unwrap(),
         s.summary.mass_outflow_kg_s.unwrap(),
         s.summary.side_leakage_kg_s.unwrap(),
     );
-    assert!((i - o - l).abs() < 1e-3 * i, "in {i}, out {o}, side {l}");
-    // the pit changes the film where it sits
-    let g = s.grid;
-    let k = g.idx(g.nx * 4 / 11, g.ny / 2); // x near 0 on x = -4 .. 1.5 b
+    assert!((i - o - l).abs() < 1e-5 * i, "in {i}, out {o}, side {l}");
+    // the pit changes the film where it sits: the cell nearest its centre (x = 0)
+    let i = (0..g.nx)
+        .min_by(|&a, &b| g.x(a).abs().total_cmp(&g.x(b).abs()))
+        .unwrap();
+    let k = g.idx(i, g.ny / 2);
     let (h, h0) = (
         s.fields.film.as_ref().unwrap()[k],
         smooth.fields.film.as_ref().unwrap()[k],
     );
-    assert!((h - h0).abs() > 1e-9, "{h} vs {h0}");
+    // far more than the solve's film accuracy (1e-6): 1e-3 of the film (measured 1.3e-2, 7.9
+    // nm: in the Hertz zone the pressure flattens most of the 0.5 um)
+    assert!((h - h0).abs() > 1e-3 * h0, "{h} vs {h0}");
 }
 
 /// A measured surface read from a `.npy` file beside the case: a 2 x 2 map of one depth spanning
