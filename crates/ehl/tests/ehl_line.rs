@@ -182,7 +182,8 @@ fn films_against_pan_hamrock() {
 }
 
 /// Grid convergence (M = 50, L = 10, Roelands + DH): central and minimum film change by less
-/// than 1 % between the two finest of 512, 1024, 2048 cells, and the change shrinks with refinement.
+/// than 1 % between the two finest of 512, 1024, 2048 cells, and the change at least halves with
+/// each halving of the cells (measured: 1.1 % -> 0.27 % on h_c, 1.4 % -> 0.34 % on h_min).
 #[test]
 fn grid_convergence() {
     let c = line_case(
@@ -217,7 +218,9 @@ fn grid_convergence() {
     let (dc2, dm2) = (d(hs[2].0, hs[1].0), d(hs[2].1, hs[1].1));
     println!("changes: h_c {dc1:.4} -> {dc2:.4}, h_min {dm1:.4} -> {dm2:.4}");
     assert!(dc2 < 0.01 && dm2 < 0.01);
-    assert!(dc2 <= dc1 + 1e-3 && dm2 <= dm1 + 1e-3);
+    // the change shrinks with refinement: at least halved per halving of the cells (first
+    // order; measured 4x, second order)
+    assert!(dc2 < 0.5 * dc1 && dm2 < 0.5 * dm1);
 }
 
 /// The observer of a steady solve sees every Newton iterate: the last one is the converged

@@ -40,8 +40,8 @@ fn solve_ball(lub: &Lubricant, n: usize, params: &EhlParams) -> (EhlResult, Grid
 /// Issue 3 reference: EHL-FBNS (Hansen et al., Tribol. Lett. 70 (2022) 80; finite volumes with
 /// JFO cavitation; Roelands + Dowson-Higginson) for a ball R = 12.5 mm on glass, E' = 110 GPa,
 /// F = 15 N, u_m = 0.09 m/s, eta0 = 0.25 Pa s, alpha = 22 GPa^-1, 129^2 cells on [-3a, 3a]^2
-/// (a = 136.5 um): h_c = 225.8 nm, h_min = 125.5 nm, p_max = 0.388 GPa. Tolerances 3 % (h_c)
-/// and 6 % (h_min), as the issue sets them.
+/// (a = 136.5 um): h_c = 225.8 nm, h_min = 125.5 nm, p_max = 0.388 GPa. The issue set 3 % (h_c)
+/// and 6 % (h_min); asserted 0.5 % (below).
 ///
 /// EHL-FBNS discretises the Couette (wedge) term with first-order upwinding (its published
 /// source, `construct_FBNS_G_matr`: "Discretization of Couette terms with UPWIND scheme", the
@@ -77,9 +77,12 @@ fn ball_on_glass_against_ehl_fbns() {
         hmin * 1e9,
         pmax / 1e9
     );
-    assert!((hc / 225.8e-9 - 1.0).abs() < 0.03);
-    assert!((hmin / 125.5e-9 - 1.0).abs() < 0.06);
-    assert!((pmax / 0.388e9 - 1.0).abs() < 0.03);
+    // the issue asked 3 % and 6 %; with the reference's own scheme, laws and grid only the
+    // cavitation treatment (JFO against complementarity) and the solver tolerances differ, so
+    // 0.5 % (measured 0.04, 0.08 and 0.05 %)
+    assert!((hc / 225.8e-9 - 1.0).abs() < 0.005, "h_c {hc}");
+    assert!((hmin / 125.5e-9 - 1.0).abs() < 0.005, "h_min {hmin}");
+    assert!((pmax / 0.388e9 - 1.0).abs() < 0.005, "p_max {pmax}");
 }
 
 /// The same ball against Hamrock & Dowson (1977) (Roelands + Dowson-Higginson, the laws of the

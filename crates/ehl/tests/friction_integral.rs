@@ -329,7 +329,8 @@ fn couette_traction_coefficient_tends_to_lambda() {
     // as the sliding grows every cell saturates (Carreau: G x^n -> inf; Eyring: tau_0 ln(2s) ->
     // inf), so couette_force / F -> Lambda. Checked: monotone in SRR, never above Lambda, and
     // within 1e-3 Lambda at SRR = 2 (u2 = 0) for Carreau; Eyring grows only logarithmically, so
-    // it is checked at a sliding speed of 1e4 m/s (fields fixed; a mathematical limit check).
+    // it is checked at a sliding speed of 2e4 m/s (SRR 2500 at u_e = 8 m/s; fields fixed; a
+    // mathematical limit check).
     let f = line_fields(400, 1e-4);
     let lambda = 0.06;
     let models = [

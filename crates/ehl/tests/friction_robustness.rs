@@ -331,7 +331,8 @@ fn a_starved_light_contact_is_warned() {
 /// The same check at a heavier load (M above `LONG_INLET_M`), where the inlet is short but can
 /// still be cut: the EHL-FBNS ball (M = 64) with its inlet at -1 a on 32^2 cells gave 53 nm
 /// against the 207 nm of its own default grid, without a word (a scan). It is now warned,
-/// naming grid.x_min and grid.nx; the example as written (inlet at -3 a, 129^2) is not.
+/// naming grid.x_min and grid.nx; the example's own inlet (at -3 a), run here on 64^2 cells,
+/// is not.
 #[test]
 fn a_cut_inlet_at_high_load_is_warned() {
     let path = format!(

@@ -81,8 +81,8 @@ fn von_mises_peak(mu: f64) -> (f64, f64) {
 }
 
 /// Johnson sec. 7.1: with friction the von Mises maximum moves up and reaches the surface for mu
-/// around 0.25-0.3. Frictionless: 0.557 p0 at 0.70 b (grid and depth step 0.01 b: +-0.01 b,
-/// +-2e-3 p0).
+/// around 0.25-0.3. Frictionless: 0.557 p0 at 0.70 b (grid step 0.016 b, depth step 0.01 b:
+/// +-0.01 b, +-2e-3 p0).
 #[test]
 fn sliding_moves_the_von_mises_maximum_to_the_surface() {
     let (z0, v0) = von_mises_peak(0.0);
@@ -190,10 +190,11 @@ fn sliding_circle_loads(grid: &Grid, mu: f64) -> (Vec<f64>, Vec<f64>) {
 ///
 /// The error is the discretisation's: cell-wise constant loads, the circle's edge cut by square
 /// cells. Measured on cells of a/20: 4.3e-3 p0 at z = 0.1 a (two cells deep, below the edge),
-/// under 1e-3 p0 from 0.25 a down; on cells of a/60 (the same points) 5.2e-4 p0. Asked: second
-/// order (the error falls by more than 3^1.5 = 5.2 when the cells shrink three times; first
-/// order would give 3), below 1e-3 p0 on a/60 cells, and below 1.5e-3 p0 from 0.25 a down on
-/// a/20 cells (where the kernel is smooth over a cell).
+/// under 1e-3 p0 from 0.25 a down; on cells of a/60 (the same points) 5.2e-4 p0 (a fall of 8.3,
+/// near second order's 9). Asked: better than order 1.5 (the error falls by more than
+/// 3^1.5 = 5.2 when the cells shrink three times; first order would give 3, second 9), below
+/// 1e-3 p0 on a/60 cells, and below 1.5e-3 p0 from 0.25 a down on a/20 cells (where the kernel
+/// is smooth over a cell).
 #[test]
 fn sliding_hertz_circle_whole_field() {
     let nu = 0.3;
@@ -483,8 +484,8 @@ fn profile_cached(
 /// ratio is taken at the worst pit position (the kept frame of largest fatigue integral), so it
 /// is below 1 and falls with the pit's depth (issue 12: monotone in depth). At the frame of
 /// highest pressure it was above 1 (1.0061 for 1 um, docs/stress.md): there the pit unloads
-/// the contact's centre. Coarse (64^2 cells, 24 steps, 16 layers): measured 0.995 / 0.985 at
-/// 96^2 and 30 steps for 0.25 / 1 um.
+/// the contact's centre. Run coarse here (64^2 cells, 24 steps, 16 layers); the life ratios
+/// 0.995 / 0.985 for 0.25 / 1 um were measured on a finer run (96^2, 30 steps).
 #[test]
 fn pit_life_ratio_is_taken_at_the_worst_position() {
     let path = format!(

@@ -148,7 +148,7 @@ fn assert_every_step_on(steps: &[StepResult], reference: &StepResult, ph: f64, h
 fn smooth_transient_stays_on_the_steady_solution() {
     let c = line(20.0, 10.0);
     let dt = 0.01 * c.b / c.ue;
-    let (_, steps, end) = run_line(
+    let (grid, steps, end) = run_line(
         &c,
         256,
         (-4.5, 1.5),
@@ -168,7 +168,12 @@ fn smooth_transient_stays_on_the_steady_solution() {
     );
     assert_eq!(steps.len(), 11);
     let s0 = &steps[0];
-    assert_every_step_on(&steps[1..], s0, c.ph, s0.fields.film[128]);
+    assert_every_step_on(
+        &steps[1..],
+        s0,
+        c.ph,
+        film_at_centre(&grid, &s0.fields.film),
+    );
 }
 
 /// Film at x = 0 by linear interpolation between the two nearest cell centres.
@@ -375,8 +380,13 @@ fn zero_depth_groove_reproduces_the_smooth_solution() {
         true,
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
-    let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 0.5);
-    assert_every_step_on(&steps, &smooth, c.ph, smooth.fields.film[nx / 2]);
+    let (grid, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 0.5);
+    assert_every_step_on(
+        &steps,
+        &smooth,
+        c.ph,
+        film_at_centre(&grid, &smooth.fields.film),
+    );
 }
 
 /// A groove on a body that stands still (SRR = 2: u2 = 0, the groove on body 2) is a steady
@@ -388,7 +398,7 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
     let nx = 256;
     let dx = 6.0 * c.b / nx as f64;
     let g = groove(0.4 * c.b, 0.3e-6, -0.2 * c.b);
-    let (_, steps, end) = run_line(
+    let (grid, steps, end) = run_line(
         &c,
         nx,
         (-4.5, 1.5),
@@ -402,7 +412,7 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
     );
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let s0 = &steps[0];
-    let hc = s0.fields.film[nx / 2];
+    let hc = film_at_centre(&grid, &s0.fields.film);
     // the groove changes the steady film: the identity is not the smooth solution
     let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 2.0);
     assert!(max_abs_diff(&s0.fields.film, &smooth.fields.film) / hc > 0.05);
@@ -771,8 +781,9 @@ fn identities_hold_on_a_finite_roller_and_a_ball() {
 
 /// Mass on a finite roller: a 1 um pit passing through the thesis roller (mirror images, psi,
 /// side leakage at the ends), the discrete balance inflow - outflow - side leakage = d(mass)/dt
-/// at every step, relative to the inflow. Asked 1e-4, as on the line: the Newton tolerance is
-/// 1e-6 and the balance is the residual summed over the pressurised zone.
+/// at every step, relative to the inflow. The balance is the residual summed over the
+/// pressurised zone, solved to the Newton tolerance 1e-6 here (the line's test asks 1e-5 of a
+/// solve to 1e-8): asked 1e-5, measured 4.1e-7.
 #[test]
 fn mass_is_conserved_at_every_step_on_a_finite_roller() {
     let sol = solve_example(
@@ -799,11 +810,15 @@ fn mass_is_conserved_at_every_step_on_a_finite_roller() {
     let storage = t
         .timeline
         .iter()
-        .map(|s| s.mass_storage_kg_s.abs())
+        .map(|s| s.mass_storage_kg_s.abs() / s.mass_inflow_kg_s)
         .fold(0.0, f64::max);
-    eprintln!("roller, 1 um pit: worst mass balance {worst:.1e}, side leakage up to {leak:.2e} kg/s, storage up to {storage:.2e} kg/s");
+    eprintln!("roller, 1 um pit: worst mass balance {worst:.1e}, side leakage up to {leak:.2e} kg/s, storage up to {storage:.2e} of the inflow");
     assert!(t.timeline.iter().all(|s| s.converged));
-    // the balance is not trivially closed: both the ends and the pit's squeeze carry mass
-    assert!(leak > 0.0 && storage > 0.0);
-    assert!(worst < 1e-4, "{worst:e}");
+    // the balance is not trivially closed: both the ends and the pit's squeeze carry mass,
+    // the squeeze far more than the balance's error (measured 1.2e-2 of the inflow)
+    assert!(
+        leak > 0.0 && storage > 1e-3,
+        "leakage {leak}, storage {storage}"
+    );
+    assert!(worst < 1e-5, "{worst:e}");
 }
