@@ -249,6 +249,9 @@ fn smooth_passage_is_the_steady_field_seen_by_each_material_point() {
                     (steady.fields.pressure[i] - hertz).abs() * dx
                 })
                 .sum();
+            // a rigorous bound on what the EHL pressure's departure from Hertz's can change
+            // (0.14 p0 here, M ~ 8.4: a loose check); McEwen to 2e-3 p0 is asserted on a Hertz
+            // pressure in `hertz_line_passage_gives_mcewen_tau_xz_range_and_von_mises`
             let tol = 2.0 * 0.207 / z * dp + 2e-3 * p0;
             for &m in &cols {
                 let r = maps.tau_xz_range[k * nxb + m] as f64;
