@@ -120,7 +120,8 @@ fn central_film_against_moes() {
         let (res, grid) = solve_line(&c, 512, -4.5, 1.5);
         assert!(res.converged, "M {m} L {l}: {}", res.termination);
         // the load the returned pressure carries, integrated here over its cells (the
-        // uniform-pressure elements' rectangle rule), after the solver's final clean-up
+        // uniform-pressure elements' rectangle rule the solver balances: a check that the
+        // returned field is the balanced one, at the solve's tolerance)
         let carried = res.fields.pressure.iter().sum::<f64>() * grid.dx;
         assert!(
             (carried / c.w - 1.0).abs() < 1e-6,

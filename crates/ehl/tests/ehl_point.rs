@@ -99,8 +99,9 @@ fn ball_against_hamrock_dowson() {
         &EhlParams::default(),
     );
     assert!(res.converged, "{}", res.termination);
-    // the load the returned pressure carries, integrated here over its cells (the solve's
-    // tolerance is on the same balance)
+    // the load the returned pressure carries, integrated here over its cells (the rectangle
+    // rule the solver balances: a check that the returned field is the balanced one, at the
+    // solve's tolerance)
     let carried = res.fields.pressure.iter().sum::<f64>() * grid.dx * grid.dy;
     assert!(
         (carried / f - 1.0).abs() < 1e-6,
@@ -187,7 +188,7 @@ fn ball_against_mourier_simulation() {
 /// slowly; Mourier et al. 2006's multigrid plateau of 209-212 nm for the same case sits just
 /// below (`ball_against_mourier_simulation`). Ours, second order, on 129^2 and 257^2,
 /// Richardson-extrapolated with the observed order 2 (65^2 / 129^2 / 257^2 give differences
-/// 15.8 and 4.1 nm, ratio 3.9): h_ext = h_257 + (h_257 - h_129) / 3, measured 212.5 nm.
+/// 15.8 and 4.1 nm, ratio 3.9): h_ext = h_257 + (h_257 - h_129) / 3, measured 212.5-212.6 nm.
 /// Tolerance 2.5 % about 216 nm (210.6-221.4 nm): the reference's order-1-to-2 range (+-1 %),
 /// ours about 1 % (order 2 against the observed 1.95), and the lower end reaching Mourier's
 /// plateau. The coarse 129^2 value alone is 4 % low, outside it: the test needs the

@@ -153,14 +153,16 @@ fn a_bump_raises_the_pressure() {
 
 /// EHL with a pit on the standing body: converges, balances the load and conserves mass
 /// (inflow = outflow + side leakage: the flux form telescopes, so the imbalance is the sum of
-/// the cells' residuals, solved to 1e-6; 1e-5 of the inflow, measured 1.5e-7).
+/// the cells' residuals, each solved to 1e-6 of its own flows: 1e-4 of the inflow allows for
+/// the wet cells' sum; measured 1.5e-7).
 #[test]
 fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
     let s = run(&(EHL.to_string() + &pit(2, 0.2e-3, 1e-3, 0.5e-6, 0.0, 0.0)));
     let smooth = run(EHL);
     assert!(s.summary.converged, "{}", s.summary.termination);
-    // the load the written pressure carries, integrated here over its cells: 1e-6, the solve's
-    // tolerance on the same balance
+    // the load the written pressure carries, integrated here over its cells (the rectangle rule
+    // the solver balances, so this checks that the written field is the balanced one): 1e-6,
+    // the solve's tolerance
     let g = s.grid;
     let carried = s.fields.pressure.iter().sum::<f64>() * g.dx * g.dy;
     assert!((carried / 6000.0 - 1.0).abs() < 1e-6, "carried {carried} N");
@@ -169,19 +171,19 @@ fn a_pit_on_the_standing_body_in_ehl_conserves_load_and_mass() {
         s.summary.mass_outflow_kg_s.unwrap(),
         s.summary.side_leakage_kg_s.unwrap(),
     );
-    assert!((i - o - l).abs() < 1e-5 * i, "in {i}, out {o}, side {l}");
+    assert!((i - o - l).abs() < 1e-4 * i, "in {i}, out {o}, side {l}");
     // the pit changes the film where it sits: the cell nearest its centre (x = 0)
-    let i = (0..g.nx)
+    let ic = (0..g.nx)
         .min_by(|&a, &b| g.x(a).abs().total_cmp(&g.x(b).abs()))
         .unwrap();
-    let k = g.idx(i, g.ny / 2);
+    let k = g.idx(ic, g.ny / 2);
     let (h, h0) = (
         s.fields.film.as_ref().unwrap()[k],
         smooth.fields.film.as_ref().unwrap()[k],
     );
-    // far more than the solve's film accuracy (1e-6): 1e-3 of the film (measured 1.3e-2, 7.9
-    // nm: in the Hertz zone the pressure flattens most of the 0.5 um)
-    assert!((h - h0).abs() > 1e-3 * h0, "{h} vs {h0}");
+    // far more than the solve's film accuracy (1e-6): 5e-3 of the film, 3 nm (measured 1.3e-2,
+    // 7.9 nm: in the Hertz zone the pressure flattens most of the 0.5 um)
+    assert!((h - h0).abs() > 5e-3 * h0, "{h} vs {h0}");
 }
 
 /// A measured surface read from a `.npy` file beside the case: a 2 x 2 map of one depth spanning

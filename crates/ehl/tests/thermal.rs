@@ -133,13 +133,13 @@ fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
     // the friction: the same Newtonian film, integrated from the profile (thermal) or the
     // closed-form Couette + Poiseuille stress (isothermal), both exact for a Newtonian film:
     // what parts them is the film, within 1e-4 (above), the Couette stress going as 1/h, and
-    // the 3e-4 K rise (beta dT ~ 1e-5 on the viscosity): 1e-4 (measured 1.5e-5)
+    // the 3e-4 K rise (beta dT ~ 1e-5 on the viscosity): 2e-4 (measured 1.5e-5)
     let (fi, ft) = (
         iso.summary.friction_coefficient.unwrap(),
         th.summary.friction_coefficient.unwrap(),
     );
     assert!(
-        (ft / fi - 1.0).abs() < 1e-4,
+        (ft / fi - 1.0).abs() < 2e-4,
         "friction thermal {ft} vs isothermal {fi}"
     );
 }
@@ -151,10 +151,13 @@ fn a_perfectly_conducting_oil_gives_the_isothermal_solution() {
 /// reduction is below the fits', docs/thermal.md "Known disagreement"); and by at least half
 /// of what an independent Grubin inlet analysis with the exact local thermal Poiseuille
 /// column gives at the same L (`reference::thermal::grubin_thermal_ratio`, heated
-/// everywhere; measured: 0.64 % against the fit's 1.2 % and Grubin's 0.15 %): our solver under that analysis's own assumptions lies within a quarter of
-/// its reduction (`film_reduction_against_a_thermal_grubin_inlet`), and the physics it adds
-/// here (Roelands, compression and expansion, warming surfaces) adds reduction; a thermal
-/// solve that left the film alone fails.
+/// everywhere). Measured: 0.64 % against the fit's 1.2 % and the Grubin's 0.15 %. Under that
+/// analysis's own assumptions our solver lies within a quarter of its reduction at L = 0.13
+/// and 0.55 (`film_reduction_against_a_thermal_grubin_inlet`), and the physics it adds here
+/// (Roelands, compression and expansion, warming surfaces) adds reduction there; here ours is
+/// 4.3 times the Grubin's (1.4-1.7 times at L = 0.13 and 0.55), which those measurements do
+/// not explain. The bound is a floor only, so that a thermal solve that left the film alone
+/// fails.
 #[test]
 fn pure_rolling_at_low_speed_changes_the_film_by_well_under_one_percent() {
     let sets = [
@@ -217,9 +220,10 @@ fn the_heat_generated_leaves_through_the_bodies_and_the_oil() {
 /// cells), thermal against isothermal, at SRR 0.01, 0.1, 0.3 and 1.0 (issue 13's "Traction"):
 /// * at SRR 0.01 the two coincide within 2 % (the issue's tolerance; measured 1.2 %): the film
 ///   there is 11 K warmer than the inlet, which lowers f by about that much;
-/// * the thermal curve falls past its peak: f(0.1) > f(0.3) > f(1.0) (measured 0.0176, 0.0148,
-///   0.0088), as measured traction curves do, while the isothermal one, capped by the limiting
-///   shear stress, never falls (0.0278, 0.0481, 0.0553);
+/// * the thermal curve rises, then falls past its peak: f(0.01) < f(0.1) > f(0.3) > f(1.0)
+///   (measured 0.0067, 0.0176, 0.0148, 0.0088), as measured traction curves do, while the
+///   isothermal one, capped by the limiting shear stress, never falls (0.0278, 0.0481,
+///   0.0553);
 /// * every point converges, SRR 1.0 included (before the damped coupling it did not: the
 ///   factors' fixed point oscillated at the Hertz outlet and ran away).
 #[test]
@@ -238,6 +242,7 @@ fn the_thermal_traction_curve_peaks_and_falls() {
         thermal.push(t.summary.friction_coefficient.unwrap());
         iso.push(i.summary.friction_coefficient.unwrap());
     }
+    println!("traction: thermal {thermal:?}, isothermal {iso:?}");
     let low = thermal[0] / iso[0] - 1.0;
     assert!(
         low.abs() < 0.02,
@@ -633,7 +638,7 @@ fn grubin_for(c: &Case, x_heat: Option<f64>) -> f64 {
     )
 }
 
-fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64, f64) {
+fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64, Case) {
     let sets = [
         NEWTONIAN.to_string(),
         "motion.slide_to_roll=0.0".to_string(),
@@ -657,7 +662,7 @@ fn reduction(u: f64, nx: usize) -> (f64, f64, f64, f64, f64) {
         l,
         ehl::reference::thermal::murch_wilson(l),
         ehl::reference::thermal::gupta(l, 0.0, ph_e),
-        grubin_for(&c, Some(-2.0)),
+        c,
     )
 }
 
@@ -687,7 +692,8 @@ fn film_reduction_against_the_inlet_heating_fits() {
         .iter()
         .map(|&u| reduction(u, 256))
         .collect();
-    for &(r, l, _, _, grubin) in all.iter().take(2) {
+    for (r, l, _, _, c) in all.iter().take(2) {
+        let grubin = grubin_for(c, Some(-2.0));
         assert!(
             1.0 - r >= 0.75 * (1.0 - grubin),
             "L {l:.3}: reduction {:.4} against the Grubin inlet's {:.4}",
@@ -696,9 +702,9 @@ fn film_reduction_against_the_inlet_heating_fits() {
         );
     }
     for w in all.windows(2) {
-        let ((r1, l1, ..), (r2, l2, ..)) = (w[0], w[1]);
+        let ((r1, l1, ..), (r2, l2, ..)) = (&w[0], &w[1]);
         assert!(
-            l1 < l2 && r2 < r1 && r1 < 1.0,
+            l1 < l2 && r2 < r1 && *r1 < 1.0,
             "L {l1:.3} {l2:.3}: h_t/h_i {r1:.4} {r2:.4}"
         );
     }
@@ -1312,7 +1318,7 @@ fn timeline(s: &Solution) -> &[ehl::solution::StepRecord] {
 /// Newtonian oil, the thermal groove passage at SRR 0.3 must follow the isothermal one step by
 /// step: the factors are 1 to round-off, so the squeeze term with the thermal density, the
 /// film's time derivatives and the per-step passes must leave pressure and film alone.
-/// Tolerances as in the steady test: 1e-4 on the films (the Newton tolerance) and on the
+/// Tolerances as in the steady test: 1e-4 on the films (the Newton tolerance), 2e-4 on the
 /// friction (the Couette stress goes as 1/h; measured 8.5e-7 at worst over the steps), the
 /// largest film temperature within 1e-2 K of the inlet's.
 #[test]
@@ -1356,7 +1362,7 @@ fn a_perfectly_conducting_transient_follows_the_isothermal_one() {
             t.friction_coefficient.unwrap(),
         );
         assert!(
-            (ft / fi - 1.0).abs() < 1e-4,
+            (ft / fi - 1.0).abs() < 2e-4,
             "step {}: friction thermal {ft} vs isothermal {fi}",
             t.step
         );

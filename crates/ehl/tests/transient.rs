@@ -413,9 +413,14 @@ fn feature_on_a_standing_body_stays_on_its_steady_solution() {
     assert!(matches!(end, TransientEnd::Completed { ref failed_steps } if failed_steps.is_empty()));
     let s0 = &steps[0];
     let hc = film_at_centre(&grid, &s0.fields.film);
-    // the groove changes the steady film: the identity is not the smooth solution
+    // the groove changes the steady film: the identity is not the smooth solution (by more
+    // than 0.1 h_c; measured 0.24 h_c, the groove 0.3 um deep)
     let (_, smooth) = smooth_steady(&c, nx, (-4.5, 1.5), 2.0);
-    assert!(max_abs_diff(&s0.fields.film, &smooth.fields.film) / hc > 0.05);
+    let changed = max_abs_diff(&s0.fields.film, &smooth.fields.film) / hc;
+    assert!(
+        changed > 0.1,
+        "the groove changed the film by {changed} h_c only"
+    );
     assert_every_step_on(&steps[1..], s0, c.ph, hc);
 }
 
@@ -782,8 +787,8 @@ fn identities_hold_on_a_finite_roller_and_a_ball() {
 /// Mass on a finite roller: a 1 um pit passing through the thesis roller (mirror images, psi,
 /// side leakage at the ends), the discrete balance inflow - outflow - side leakage = d(mass)/dt
 /// at every step, relative to the inflow. The balance is the residual summed over the
-/// pressurised zone, solved to the Newton tolerance 1e-6 here (the line's test asks 1e-5 of a
-/// solve to 1e-8): asked 1e-5, measured 4.1e-7.
+/// pressurised zone, each row solved to the Newton tolerance 1e-6 here (the line's test asks
+/// 1e-5 of a solve to 1e-8): asked 1e-4 for the sum over the wet cells, measured 4.1e-7.
 #[test]
 fn mass_is_conserved_at_every_step_on_a_finite_roller() {
     let sol = solve_example(
@@ -820,5 +825,5 @@ fn mass_is_conserved_at_every_step_on_a_finite_roller() {
         leak > 0.0 && storage > 1e-3,
         "leakage {leak}, storage {storage}"
     );
-    assert!(worst < 1e-5, "{worst:e}");
+    assert!(worst < 1e-4, "{worst:e}");
 }
