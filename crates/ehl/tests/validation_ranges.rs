@@ -137,9 +137,11 @@ fn default_domain_contains_the_elliptical_hertz_contact() {
     let sol = solve(&case, &Silent).unwrap();
     let s = &sol.summary;
     assert!(s.converged);
+    // 1 %, the Hertz bound of the dry solver's own tests (dry_hertz.rs, the brief's); measured
+    // 2.5e-4 on the example's 96 x 160 cells
     let rel = s.max_pressure_pa / s.hertz_pressure_pa - 1.0;
     assert!(
-        rel.abs() < 0.03,
+        rel.abs() < 0.01,
         "p_max {} vs Hertz {}",
         s.max_pressure_pa,
         s.hertz_pressure_pa
