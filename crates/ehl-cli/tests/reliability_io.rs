@@ -62,8 +62,11 @@ fn names(dir: &Path) -> Vec<String> {
 
 // ------------------------------------------------------------------ 1. pictures never hang
 
-/// The shorter roller shifted off the centre row: the film there is +inf (no material) all
-/// along the line, which used to loop forever inside plotters while drawing centerline.png.
+/// The second roller shifted along its axis by 2.5 mm (both are 4 mm long), so that the
+/// centre row (the one nearest y = 0) lies on the first alone: the film there is +inf (no
+/// material) all along the line, which used to loop forever inside plotters while drawing
+/// centerline.png. (At 2 mm the second roller started at y = 0 and the centre row was a tie
+/// between the rows at -+dy/2.)
 #[test]
 fn no_material_on_the_centre_row_does_not_hang_the_pictures() {
     let w = Work::new(DRY);
@@ -73,7 +76,7 @@ fn no_material_on_the_centre_row_does_not_hang_the_pictures() {
         "run",
         case,
         "--set",
-        "body2.axial_offset=2e-3",
+        "body2.axial_offset=2.5e-3",
         "--set",
         "grid.nx=32",
         "--set",
@@ -85,6 +88,17 @@ fn no_material_on_the_centre_row_does_not_hang_the_pictures() {
     assert!(o.code == 0 || o.code == 3, "{}", o.stderr);
     let png = w.file("results").join("centerline.png");
     assert!(std::fs::metadata(png).unwrap().len() > 0);
+    // the case is the one meant: no material anywhere on the centre row
+    let csv = std::fs::read_to_string(w.file("results").join("centerline.csv")).unwrap();
+    let films: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert!(
+        !films.is_empty() && films.iter().all(|f| *f == "inf"),
+        "centre row films {films:?}"
+    );
 }
 
 /// A killed run leaves `.results.tmp-PID-N`; the next write removes it when PID no longer runs,

@@ -306,7 +306,6 @@ fn check_groove_run(dir: &Path, kept: &[usize]) -> Timeline {
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
     assert!(hi - lo > 0.5 * 0.25e-6, "central film {lo} .. {hi}");
-    assert!(p_over > pmax[0], "{p_over} vs {}", pmax[0]);
     let fr = &s["friction_coefficient_over_travel"];
     assert_same(
         fr[0].as_f64().unwrap(),

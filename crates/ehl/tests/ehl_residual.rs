@@ -57,10 +57,12 @@ fn poiseuille_exact_on_quadratics() {
 
 /// Couette part: for rho H linear in X both upwind orders give d(rho H)/dX exactly (away from
 /// the inlet cells where the scheme falls back to first order with zero inflow gradient);
-/// for rho H quadratic only the second-order scheme is exact (it is second order).
+/// for rho H quadratic only the second-order scheme is exact (it is second order), and the
+/// first-order one gives its backward difference, 3 dX below the derivative of 1 + 2X + 3X^2
+/// (so a first-order flag that were ignored fails too).
 #[test]
 fn couette_upwind_orders() {
-    for &(second, quad) in &[(false, false), (true, false), (true, true)] {
+    for &(second, quad) in &[(false, false), (true, false), (true, true), (false, true)] {
         let g = grid(16, 1, second);
         let n = g.nx;
         let (p, rho, eps, act) = (vec![0.0; n], vec![1.0; n], vec![0.0; n], vec![true; n]);
@@ -86,7 +88,12 @@ fn couette_upwind_orders() {
         residual(&g, &f, None, None, &mut r);
         for i in 2..n {
             let x = (i as f64 + 0.5) * g.dx;
-            let exact = if quad { 2.0 + 6.0 * x } else { 2.0 };
+            let exact = match (quad, second) {
+                (false, _) => 2.0,
+                (true, true) => 2.0 + 6.0 * x,
+                // (h_i - h_i-1) / dX = 2 + 3 (x_i + x_i-1)
+                (true, false) => 2.0 + 6.0 * x - 3.0 * g.dx,
+            };
             // r = -L = +d(rho H)/dX
             assert!(
                 (r[i] - exact).abs() < 1e-9,
