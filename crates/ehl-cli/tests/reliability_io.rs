@@ -332,8 +332,14 @@ fn out_never_replaces_a_folder_ehl_did_not_write() {
     }
     let marker = std::fs::read_to_string(w.file("empty/.ehl-output")).unwrap();
     assert!(marker.starts_with("ehl "), "{marker}");
-    // a user file added to an ehl folder does not make it the user's: the marker decides
+    // a user file added to an ehl folder does not make it the user's: the marker decides, and
+    // the next run replaces the folder whole
+    std::fs::write(w.file("empty/extra.txt"), "added").unwrap();
+    let o = w.ehl(&["run", "case.toml", "--out", "empty"]);
+    assert!(o.code == 0 || o.code == 3, "{}", o.stderr);
     assert!(w.file("empty/summary.json").is_file());
+    assert!(w.file("empty/.ehl-output").is_file());
+    assert!(!w.file("empty/extra.txt").exists());
 }
 
 /// A transient run (which streams its files into the output's temporary folder while it

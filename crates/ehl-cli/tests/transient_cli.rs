@@ -382,8 +382,8 @@ fn check_groove_run(dir: &Path, kept: &[usize]) -> Timeline {
     t
 }
 
-/// The animation run: the default frames (every step: 25 frames of 192 cells are far below the
-/// memory limit), passage.gif, and the example's three snapshots.
+/// The animation run: the default frames (every step: a streamed CLI run keeps every step's
+/// frame whatever the memory), passage.gif, and the example's three snapshots.
 #[test]
 fn groove_passage_writes_the_contract_outputs() {
     let w = Work::new(&groove_text());
@@ -606,10 +606,33 @@ fn a_transient_sweep_writes_each_passage() {
         assert!(hidden.is_empty(), "{p}: {hidden:?}");
     }
     let csv = std::fs::read_to_string(w.file("study/sweep.csv")).unwrap();
-    let head = csv.lines().next().unwrap();
-    assert!(
-        head.contains("friction_coefficient_mean_over_travel"),
-        "{head}"
-    );
     assert_eq!(csv.lines().count(), 3, "{csv}");
+    let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).expect(name);
+    let (mean_at, folder_at) = (col("friction_coefficient_mean_over_travel"), col("folder"));
+    // each row's mean friction is the mean of its passage's timeline, read back here
+    for row in csv.lines().skip(1) {
+        let cells: Vec<&str> = row.split(',').collect();
+        let mean: f64 = cells[mean_at].parse().unwrap();
+        let timeline =
+            std::fs::read_to_string(w.file("study").join(cells[folder_at]).join("timeline.csv"))
+                .unwrap();
+        let th: Vec<&str> = timeline.lines().next().unwrap().split(',').collect();
+        let f_at = th
+            .iter()
+            .position(|h| *h == "friction_coefficient")
+            .expect("friction column");
+        let f: Vec<f64> = timeline
+            .lines()
+            .skip(1)
+            .filter_map(|l| l.split(',').nth(f_at)?.parse().ok())
+            .collect();
+        let expected = f.iter().sum::<f64>() / f.len() as f64;
+        assert!(
+            !f.is_empty() && (mean / expected - 1.0).abs() < 1e-9,
+            "{}: sweep.csv {mean} against the timeline's mean {expected} over {} steps",
+            cells[folder_at],
+            f.len()
+        );
+    }
 }

@@ -34,7 +34,7 @@ tolerance = 1e-10
 #[test]
 fn ellipsoid_on_flat_matches_elliptical_hertz() {
     // R_y / R_x = 3 gives a contact ellipse a_y / a_x ~ 2. The semi-axis a_x spans ~32 cells and
-    // a_y ~40 cells; piecewise-constant cells resolve p0 to ~0.1 % and the approach to ~0.1 %
+    // a_y ~53 cells; piecewise-constant cells resolve p0 to ~0.1 % and the approach to ~0.1 %
     // at that size (the ball tests show the same order), so 1 % is a safe but failing bound
     // for a wrong kernel, a wrong E' or a wrong radius in y (each gives several %).
     let case = parse_str(ELLIPSOID, "ellipsoid.toml", &[]).unwrap();
