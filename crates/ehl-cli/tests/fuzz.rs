@@ -523,9 +523,12 @@ fn check_in_process(text: &str, tally: &mut Tally) {
     }
 }
 
-/// Runs the built `ehl` with a timeout; `None` if it had to be killed.
+/// Runs the built `ehl` with a timeout; `None` if it had to be killed. One solver thread per
+/// child: the campaigns already run one child per core, and children that each took every core
+/// oversubscribed the machine, so a slow minute could read as a hang.
 fn ehl_timed(dir: &Path, args: &[&str], limit: Duration) -> Option<(i32, String, String)> {
     let mut child = Command::new(env!("CARGO_BIN_EXE_ehl"))
+        .env("RAYON_NUM_THREADS", "1")
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
