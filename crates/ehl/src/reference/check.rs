@@ -103,6 +103,11 @@ pub struct ThermalCheck {
 /// 0.5 GPa and 6 of 11 did not at 1-2 GPa (lines at 1 and 2 GPa, a ball at 1.2 GPa).
 pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
+/// What is known of thermal runs with the Eyring law at high pressure, said by `ehl check`
+/// (above [`EYRING_NOTE_PRESSURE`]) and by a failed run's reason
+/// (`crate::run::thermal::rheology_hint`): one text, so the two never disagree.
+pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in several cases measured at Hertz pressures near 1 GPa and above (tau_0 = 5 MPa: the flow factors at the outlet's pressure spike flip between outer iterations), where the Carreau law with a limiting shear stress settled: docs/thermal.md, \"Left open\"";
+
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges
 /// and the time step": the 1 um thesis pit's peak 1.40 / 1.23 / 1.17 GPa at 2.3 / 1.2 / 0.6
@@ -627,10 +632,7 @@ impl fmt::Display for CheckReport {
                 "",
             )?;
             if t.eyring && self.hertz.ph >= EYRING_NOTE_PRESSURE {
-                writeln!(
-                    f,
-                    "  note: with the Eyring law near 1 GPa and above some thermal runs did not settle (the flow factors at the outlet's pressure spike flip between outer iterations); the Carreau law with a limiting shear stress settled in the same contacts (docs/thermal.md, \"Left open\")"
-                )?;
+                writeln!(f, "  note: {EYRING_THERMAL_LIMIT}")?;
             }
             if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
                 writeln!(

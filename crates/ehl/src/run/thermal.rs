@@ -119,9 +119,8 @@ pub fn rheology_hint(case: &Case, converged: bool, termination: &str) -> Option<
         case.lubricant.as_ref()?.rheology,
         crate::lubricant::Rheology::Eyring { .. }
     );
-    (eyring && !converged && termination != "cancelled").then(|| {
-        "; thermal runs with the Eyring law did not settle in several cases measured at Hertz pressures near 1 GPa and above (tau_0 = 5 MPa: the flow factors at the outlet's pressure spike flip between outer iterations), where the Carreau law with a limiting shear stress settled: docs/thermal.md, \"Left open\"".to_string()
-    })
+    (eyring && !converged && termination != "cancelled")
+        .then(|| format!("; {}", crate::reference::check::EYRING_THERMAL_LIMIT))
 }
 
 /// The thermal figures of `run` into `summary`; `mu` the friction coefficient when known (for
