@@ -372,6 +372,13 @@ pub struct LineOptions {
     /// add no parallel work there, only their overhead; the parallel version of this loop
     /// costs such a contact 1.5-2.5 % of CPU time as it is, BENCHMARKS.md)
     pub parallel_columns: bool,
+    /// every flux-driven column (`Line::poiseuille_flux_x`) takes the root of its flux match
+    /// nearest the pressure's own gradient, as an unstable one does ([`UNSTABLE_FLUX_SLOPE`]),
+    /// instead of the plain re-solves from its warm start: at a solution of the coupled problem
+    /// (whose columns take the pressure's gradient) that root is the pressure's gradient
+    /// itself, so the update that checks such a solution starts on it
+    /// (`crate::ehl::thermal`); false by default
+    pub nearest_root: bool,
 }
 
 impl Default for LineOptions {
@@ -385,6 +392,7 @@ impl Default for LineOptions {
             shear_heating: true,
             linearise_heating: true,
             parallel_columns: true,
+            nearest_root: false,
         }
     }
 }
@@ -437,6 +445,34 @@ pub const FLUX_RESOLVES: usize = 3;
 /// the roller, but 2e-6 off on the line, and the thermal map of docs/thermal.md (the Table
 /// 3.7 line over SRR and L) settled in 1 of its 20 runs instead of 15.
 pub const WARM_FLUX_RESOLVES: usize = 1;
+
+/// The slopes d ln |q_P| / d ln |g| of a flux-driven column's Poiseuille flux q_P = a(g) g
+/// (a = -(rho/eta)_e h^3/12) between which its plain re-solve g <- q_P / a(g) contracts (its
+/// gain is |1 - slope|; a Newtonian column's slope is 1, a Carreau column's between 1 and 1/n).
+/// Outside, the column's gradient is the root of a(g) g = q_P nearest the pressure's own
+/// gradient. Measured on an Eyring line at 1 GPa (tau_0 = 5 MPa, SRR 0.1; docs/thermal.md,
+/// "Left open"): at the outlet's pressure spike the Poiseuille stress h |dp/dx| / 2 is
+/// several tau_0, and with sliding the Poiseuille coefficient of the secant viscosities falls
+/// as the gradient grows (slope -3 there), so a(g) g = q_P has a second root at 2.4 times the
+/// pressure's gradient; the plain re-solves drifted to it over the film iterations, and the
+/// temperature solve ran away (3990 K). The lower bound lies below the contraction's, 0: a
+/// column capped by the limiting shear stress, whose flux barely moves with g (slope ~0),
+/// keeps its plain re-solves, as before.
+const UNSTABLE_FLUX_SLOPE: (f64, f64) = (-0.5, 2.0);
+
+/// The root search of an unstable flux-driven column ([`UNSTABLE_FLUX_SLOPE`]): steps in
+/// ln |g| to either side of the pressure's gradient, the first [`ROOT_FIRST_STEP`], doubled at
+/// most [`ROOT_BRACKET_STEPS`] times, to the first sign change of ln |a g / q_P| (the nearest
+/// root, within a factor 2 in distance), then at most [`ROOT_REFINE_STEPS`] Illinois steps to
+/// |ln |a g / q_P|| <= [`ROOT_TOLERANCE`] (each profile solve of the search starts from the
+/// same shear-thinning state, so ln |a g / q_P| is a smooth function of ln |g| to well below
+/// the profile's own tolerance, 1e-10 in ln eta: with 1e-9 a strongly thinning Carreau column
+/// of `a_flux_driven_line_started_warm_is_where_it_was`, slope near 2, ended 2e-8 off its flux
+/// where the plain re-solves reach 3e-9).
+const ROOT_FIRST_STEP: f64 = 0.05;
+const ROOT_BRACKET_STEPS: usize = 10;
+const ROOT_REFINE_STEPS: usize = 30;
+const ROOT_TOLERANCE: f64 = 1e-12;
 
 /// Where the column iterations of a line start ([`line_coefficients_from`]), one line's worth,
 /// e.g. the [`LineSolution`]'s `thinning` and `poiseuille` of its last solve.
@@ -759,15 +795,104 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     // never agreed with it (measured on the example line at p_h = 2 GPa, U = 1e-11, Lambda
     // 0.04, SRR 0.5: friction 0.03791 against the consistent 0.03833).
     if let Some(q) = line.poiseuille_flux_x {
-        for _ in 0..resolves {
+        // the last gradient tried, as (u, phi) = (ln |g|, ln |a(g) g / q_P|): the plain
+        // re-solve is u <- u - phi, whose gain is |1 - slope| with slope = d phi / d u
+        let mut last: Option<(f64, f64)> = None;
+        let mut unstable = opts.nearest_root;
+        let mut n = 0;
+        while !unstable {
             let a = -f.rho_over_eta_e * col.h.powi(3) / 12.0;
             let g = q[i] / a;
             if !g.is_finite() || (g - col.dpdx).abs() <= 1e-12 * g.abs().max(1.0) {
                 break;
             }
+            if col.dpdx * g > 0.0 {
+                let (u, phi) = (col.dpdx.abs().ln(), (col.dpdx / g).ln());
+                if let Some((ul, pl)) = last {
+                    let slope = (phi - pl) / (u - ul);
+                    if slope.is_finite()
+                        && !(UNSTABLE_FLUX_SLOPE.0..=UNSTABLE_FLUX_SLOPE.1).contains(&slope)
+                    {
+                        unstable = true;
+                        break;
+                    }
+                }
+                last = Some((u, phi));
+            } else {
+                last = None;
+            }
+            if n >= resolves {
+                break;
+            }
             col.dpdx = g;
             s = profile(&col, Some(&s.eta_eff))?;
             f = cap(&col, &s)?;
+            n += 1;
+        }
+        let g_line = line.dpdx[i];
+        if unstable && g_line * q[i] < 0.0 {
+            // the root nearest the pressure's own gradient: bracketed from it by steps in
+            // ln |g| that double, then Illinois false position; where no root is bracketed the
+            // column keeps its plain re-solves
+            let kept = (col.dpdx, s.clone(), f.clone());
+            let mut at =
+                |col: &mut Column,
+                 u: f64|
+                 -> Result<(f64, ShearThinningProfile, FilmProfile), FilmError> {
+                    col.dpdx = g_line.signum() * u.exp();
+                    let s = profile(col, Some(&kept.1.eta_eff))?;
+                    let f = cap(col, &s)?;
+                    let a = -f.rho_over_eta_e * col.h.powi(3) / 12.0;
+                    Ok(((a * col.dpdx / q[i]).ln(), s, f))
+                };
+            let u_line = g_line.abs().ln();
+            let (p_line, sa, fa) = at(&mut col, u_line)?;
+            (s, f) = (sa, fa);
+            // the last point tried below and above the pressure's gradient
+            let mut sides = [(u_line, p_line); 2];
+            let mut bracket = None;
+            let mut step = ROOT_FIRST_STEP;
+            'search: for _ in 0..ROOT_BRACKET_STEPS {
+                if !p_line.is_finite() || p_line.abs() <= ROOT_TOLERANCE {
+                    break;
+                }
+                for (side, sign) in [(0, -1.0), (1, 1.0)] {
+                    let (ua, pa) = sides[side];
+                    let ub = u_line + sign * step;
+                    let (pb, sb, fb) = at(&mut col, ub)?;
+                    (s, f) = (sb, fb);
+                    if pb.is_finite() && pa * pb <= 0.0 {
+                        bracket = Some((ua, pa, ub, pb));
+                        break 'search;
+                    }
+                    sides[side] = (ub, pb);
+                }
+                step *= 2.0;
+            }
+            match bracket {
+                Some((mut ua, mut pa, mut ub, mut pb)) => {
+                    for _ in 0..ROOT_REFINE_STEPS {
+                        if pb.abs() <= ROOT_TOLERANCE || pa == pb {
+                            break;
+                        }
+                        let uc = (ua * pb - ub * pa) / (pb - pa);
+                        let (pc, sc, fc) = at(&mut col, uc)?;
+                        (s, f) = (sc, fc);
+                        if pc * pb < 0.0 {
+                            (ua, pa) = (ub, pb);
+                        } else {
+                            pa *= 0.5;
+                        }
+                        (ub, pb) = (uc, pc);
+                    }
+                }
+                // the pressure's gradient is the root: its profile is the last evaluated
+                None if p_line.abs() <= ROOT_TOLERANCE => {}
+                None => {
+                    col.dpdx = kept.0;
+                    (s, f) = (kept.1, kept.2);
+                }
+            }
         }
     }
     // the shear-thinning iteration's warm start is its own fixed point's viscosity (before
@@ -1743,6 +1868,150 @@ mod tests {
                 q[i]
             );
             assert!((pr.rho_over_eta_e / sol.poiseuille[i] - 1.0).abs() < 1e-12);
+        }
+    }
+
+    /// An Eyring film (eta = 1e4 Pa s, tau_0 = 5 MPa, rho = 870 kg/m^3, whatever the state).
+    struct EyringFilm;
+
+    impl FilmLaws for EyringFilm {
+        fn viscosity(&self, _: f64, _: f64) -> f64 {
+            1e4
+        }
+        fn density(&self, _: f64, _: f64) -> f64 {
+            870.0
+        }
+        fn density_dt(&self, _: f64, _: f64) -> f64 {
+            0.0
+        }
+        fn ln_effective_viscosity(&self, ln_eta: f64, ln_rate: f64, p: f64, t: f64) -> (f64, f64) {
+            self.ln_shear_law(p, t).unwrap().eval(ln_eta, ln_rate)
+        }
+        fn ln_shear_law(&self, _: f64, _: f64) -> Option<crate::lubricant::rheology::LnShearLaw> {
+            Some(crate::lubricant::rheology::LnShearLaw::Eyring {
+                ln_tau0: 5e6f64.ln(),
+            })
+        }
+    }
+
+    /// A flux-driven Eyring column far past tau_0 with sliding (h = 0.64 um, 5.25 and 4.75 m/s,
+    /// the Poiseuille stress h |dp/dx| / 2 = 14 MPa at the pressure's gradient, 4.5e13 Pa/m: the
+    /// outlet spike of an Eyring line at 1 GPa) has its Poiseuille flux a(g) g falling as the
+    /// gradient grows past ~1.1 times 3e13 Pa/m (the secant viscosities' coefficient (rho/eta)_e
+    /// falls faster than g grows), so a(g) g = q_P has three roots: 0.8, 1.5 (the pressure's
+    /// own) and ~4.5 times 3e13 Pa/m. With q_P that of the pressure's gradient and the column
+    /// started warm from the coefficient at 5 % more gradient, the plain re-solve (gain |1 -
+    /// slope| > 1 there) leaves the pressure's root; the column must end on it: its coefficient
+    /// (rho/eta)_e that of the profile at the pressure's gradient to 1e-8 (the root's
+    /// tolerance is 1e-10 in ln (a g / q_P)). Fails with the plain re-solve alone (measured:
+    /// the coefficient 14 % off after the one warm re-solve) and with a search that steps one
+    /// way only, against the sign of the mismatch at the pressure's gradient (measured: the
+    /// mismatch there is at the profile solve's noise, and the search ended on the lower root,
+    /// (rho/eta)_e 11.9 against 6.34). Started warm next to the lower root, where the plain
+    /// re-solve contracts, the column stays there (its coefficient within 2 % of that root's,
+    /// 11.9 against 6.34 at the pressure's), unless [`LineOptions::nearest_root`] is set: then
+    /// it takes the pressure's root. The preconditions, that the flux falls at the pressure's
+    /// gradient and has a root on each side, are asserted.
+    #[test]
+    fn an_unstable_flux_driven_column_keeps_the_root_of_its_pressure_gradient() {
+        let rule = Lobatto::new(7);
+        let nz = rule.len();
+        let (h, g_line) = (0.64e-6, -4.5e13);
+        let (u1, u2) = (5.25, 4.75);
+        let coefficient = |g: f64| {
+            let col = crate::thermal::film::Column {
+                h,
+                dpdx: g,
+                dpdy: 0.0,
+                u1,
+                u2,
+            };
+            crate::thermal::film::shear_thinning_profile(
+                &rule,
+                &EyringFilm,
+                &col,
+                0.0,
+                &[T0; 7],
+                &[1e4; 7],
+                &[870.0; 7],
+                ShearOptions::default(),
+            )
+            .unwrap()
+            .profile
+            .rho_over_eta_e
+        };
+        let flux = |g: f64| -coefficient(g) * h.powi(3) / 12.0 * g;
+        let q = flux(g_line);
+        // the preconditions: a falling flux at the pressure's gradient, roots on both sides
+        assert!(flux(1.05 * g_line) < q && flux(0.95 * g_line) > q);
+        assert!(flux(0.5 * g_line) < q && flux(3.0 * g_line) > q && flux(2.0 * g_line) < q);
+        let qs = [q];
+        let line = Line {
+            dx: f64::INFINITY,
+            h: &[h],
+            p: &[0.0],
+            dpdx: &[g_line],
+            dpdy: &[0.0],
+            u1,
+            u2,
+            t1: &[T0],
+            t2: &[T0],
+            t_in: T0,
+            poiseuille_flux_x: Some(&qs),
+            transient: None,
+            side: None,
+        };
+        let mut thinning = vec![f64::NAN; nz];
+        let mut poiseuille = vec![coefficient(1.05 * g_line)];
+        let (_, profiles, _) = line_coefficients_from(
+            &rule,
+            &EyringFilm,
+            &line,
+            &[T0; 7],
+            &LineOptions::default(),
+            &mut thinning,
+            &mut poiseuille,
+        )
+        .unwrap();
+        let want = coefficient(g_line);
+        let got = profiles[0].rho_over_eta_e;
+        assert!(
+            (got / want - 1.0).abs() < 1e-8,
+            "(rho/eta)_e {got:e} against {want:e} at the pressure's gradient"
+        );
+        let poiseuille_flux = profiles[0].flux_x - profiles[0].rho_star_ue * h;
+        assert!((poiseuille_flux / q - 1.0).abs() < 1e-8);
+
+        // started warm next to the lower root instead, a stable one of the plain re-solve (the
+        // flux rises there, slope between 0 and 2), the column stays on it; with
+        // `nearest_root` (the update that checks a polished solution) it takes the pressure's
+        // root all the same
+        let lower = (1..45)
+            .map(|k| g_line * (0.95 - 0.01 * k as f64))
+            .find(|&g| flux(g) < q)
+            .expect("a lower root");
+        for (nearest, want) in [(false, coefficient(lower)), (true, coefficient(g_line))] {
+            let mut thinning = vec![f64::NAN; nz];
+            let mut poiseuille = vec![coefficient(lower)];
+            let opts = LineOptions {
+                nearest_root: nearest,
+                ..LineOptions::default()
+            };
+            let (_, profiles, _) = line_coefficients_from(
+                &rule,
+                &EyringFilm,
+                &line,
+                &[T0; 7],
+                &opts,
+                &mut thinning,
+                &mut poiseuille,
+            )
+            .unwrap();
+            let got = profiles[0].rho_over_eta_e;
+            assert!(
+                (got / want - 1.0).abs() < 0.02,
+                "nearest_root {nearest}: (rho/eta)_e {got:e} against {want:e}"
+            );
         }
     }
 
