@@ -100,12 +100,16 @@ pub struct ThermalParams {
     /// from L ~ 3-7 the thick inlet's reverse flow ran away at 7 and converged at 11.
     pub refined_points: Option<usize>,
     /// a line contact (one grid line) whose fixed point is slow (`POLISH_WORTH`,
-    /// `POLISH_LATE`), once it is near (`POLISH_FACTOR_RESIDUAL`, `POLISH_INNER_RESIDUAL_K`),
-    /// is handed to Newton's method on the coupled problem of pressure, film and surface
-    /// temperatures (`super::thermal_newton`); the fixed point's own stop then judges the
-    /// result. On the Table 3.7 line's thermal map (docs/thermal.md) 19 of 20 runs settle
-    /// instead of 15, in 483 outer iterations instead of 909 (501 since capped columns carry
-    /// their flux with the capped profile), in 10-15 % more time.
+    /// `POLISH_LATE`), once it is near (`POLISH_FACTOR_RESIDUAL`, `POLISH_INNER_RESIDUAL_K`;
+    /// from `POLISH_LATE` on at any factors' residual), is handed to Newton's method on the
+    /// coupled problem of pressure, film and surface temperatures (`super::thermal_newton`);
+    /// the fixed point's own stop then judges the result, with an update whose columns keep
+    /// the root of their flux match nearest the pressure's gradient. On the Table 3.7 line's
+    /// thermal map (docs/thermal.md) 19 of 20 runs settled instead of 15 when it came, in 483
+    /// outer iterations instead of 909 (501 since capped columns carry their flux with the
+    /// capped profile), in 10-15 % more time; 18 since the compression's capped gradient
+    /// (2026-11-29). The Eyring lines of the robustness scan at 1-2 GPa settle with it
+    /// (2026-12-01), 3 of 4.
     pub coupled_newton: bool,
 }
 

@@ -107,17 +107,19 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
 }
 
 /// What to add to the reason `termination` of a thermal run of `case` with the Eyring law that
-/// failed, where its contact has the thermal fixed point alone
-/// ([`crate::reference::check::eyring_without_newton`]: a 2D grid, or a line without
-/// `thermal.coupled_newton`); None when it converged, was cancelled, has no `[thermal]`,
-/// another law or Newton's method on the coupled problem. In the robustness scan of
-/// docs/thermal.md Eyring balls at tau_0 = 5 MPa near 1 GPa did not settle (far past tau_0
-/// the flow factor of a column at the outlet's pressure spike moves by up to a factor of 2
-/// between outer iterations, which lagged factors cannot follow), while the Carreau law with a
-/// limiting shear stress settled in the same contacts.
+/// failed (None when it converged, was cancelled, has no `[thermal]` or another law): what the
+/// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa near 1 GPa
+/// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): two balls and a line on Barus's law
+/// did not settle (far past tau_0 the flow factor of a column at the outlet's pressure spike
+/// moves by up to a factor of 2 between outer iterations, which lagged factors cannot
+/// follow), the other steady lines settled with Newton's method on the coupled problem, and
+/// the Carreau law with a limiting shear stress settled in the same contacts.
 pub fn rheology_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     case.thermal.as_ref()?;
-    let eyring = crate::reference::check::eyring_without_newton(case);
+    let eyring = matches!(
+        case.lubricant.as_ref()?.rheology,
+        crate::lubricant::Rheology::Eyring { .. }
+    );
     (eyring && !converged && termination != "cancelled")
         .then(|| format!("; {}", crate::reference::check::EYRING_THERMAL_LIMIT))
 }
