@@ -451,7 +451,7 @@ pub const WARM_FLUX_RESOLVES: usize = 1;
 /// gain is |1 - slope|; a Newtonian column's slope is 1, a Carreau column's between 1 and 1/n).
 /// Outside, the column's gradient is the root of a(g) g = q_P nearest the pressure's own
 /// gradient. Measured on an Eyring line at 1 GPa (tau_0 = 5 MPa, SRR 0.1; docs/thermal.md,
-/// "Left open"): at the outlet's pressure spike the Poiseuille stress h |dp/dx| / 2 is
+/// "Robustness beyond the examples", "The Eyring lines settle"): at the outlet's pressure spike the Poiseuille stress h |dp/dx| / 2 is
 /// several tau_0, and with sliding the Poiseuille coefficient of the secant viscosities falls
 /// as the gradient grows (slope -3 there), so a(g) g = q_P has a second root at 2.4 times the
 /// pressure's gradient; the plain re-solves drifted to it over the film iterations, and the
