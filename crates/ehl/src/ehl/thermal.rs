@@ -109,7 +109,7 @@ pub struct ThermalParams {
     /// outer iterations instead of 909 (501 since capped columns carry their flux with the
     /// capped profile), in 10-15 % more time; 18 since the compression's capped gradient
     /// (2026-11-29). The Eyring lines of the robustness scan at 1-2 GPa settle with it
-    /// (2026-12-01), 3 of 4.
+    /// (2026-12-01), all 4.
     pub coupled_newton: bool,
 }
 
@@ -415,6 +415,8 @@ fn run(
     // pressure's own gradient, where the coupled residual takes them, and keep the root of
     // their flux match nearest it (`film_energy::LineOptions::nearest_root`)
     let mut check_polish = false;
+    // a failed Reynolds solve was handed to the coupled Newton method (once a run)
+    let mut rescued = false;
     while outer < thermal.max_outer {
         if crate::run::cancel::requested() {
             failure = Some(Termination::Cancelled);
@@ -619,6 +621,42 @@ fn run(
         let ok = e.converged;
         end = Some(e);
         if !ok {
+            // a line whose Reynolds solve failed with every shorter step of the factors is
+            // handed once to Newton's method on the coupled problem, from the pressure before
+            // that solve: the scan's Eyring line on Barus's law at 1 GPa failed so at its 17th
+            // outer iteration, before a polish was due (docs/thermal.md, "The Eyring lines
+            // settle")
+            if thermal.coupled_newton && grid.ny == 1 && !rescued {
+                rescued = true;
+                let failed = (st.clone(), sys.thermal.clone());
+                st = st_base.clone();
+                sys.thermal = Some(base.clone());
+                sys.eval(&mut st);
+                contact.options.inlet_hysteresis = true;
+                if let Ok(pol) = super::thermal_newton::polish(
+                    &mut sys,
+                    &mut st,
+                    contact,
+                    ph,
+                    hs,
+                    params.tolerance,
+                    POLISH_TOLERANCE * thermal.tolerance_k,
+                    &mut stats,
+                ) {
+                    coupled_steps += pol.steps;
+                    polishing.reached(outer);
+                    check_polish = true;
+                    factors = pol.factors;
+                    end = Some(pol.end);
+                    tight = true;
+                    mixing.clear();
+                    near_linear = false;
+                    continue;
+                }
+                st = failed.0;
+                sys.thermal = failed.1;
+                sys.eval(&mut st);
+            }
             break;
         }
     }
