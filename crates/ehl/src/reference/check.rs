@@ -102,7 +102,7 @@ pub struct ThermalCheck {
 /// `ehl check` notes a thermal case with the Eyring law from this Hertz pressure (Pa) on where
 /// the contact has the thermal fixed point alone ([`eyring_without_newton`]): in the robustness
 /// scan of docs/thermal.md thermal Eyring runs (tau_0 = 5 MPa) settled at 0.5 GPa, and of the
-/// balls at 1.2 GPa 2 of 4 did not. (The lines at 1 and 2 GPa did not either before
+/// balls at 0.77 GPa 2 of 4 did not. (The lines at 1 and 2 GPa did not either before
 /// 2026-12-01; with Newton's method on the coupled problem all 4 at 1-2 GPa settle.)
 pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
@@ -126,7 +126,7 @@ pub fn eyring_without_newton(case: &Case) -> bool {
 /// What is known of thermal runs with the Eyring law at high pressure, said by `ehl check`
 /// (above [`EYRING_NOTE_PRESSURE`], where [`eyring_without_newton`]) and by a failed run's
 /// reason (`crate::run::thermal::rheology_hint`): one text, so the two never disagree.
-pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in some cases measured at Hertz pressures near 1 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": two balls at 1.2 GPa; the steady lines there settled with Newton's method on the coupled problem, which point contacts, finite rollers and transient steps do not have yet), where the Carreau law with a limiting shear stress settled";
+pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": two balls at 0.77 GPa; the steady lines at 1-2 GPa there settled with Newton's method on the coupled problem, which point contacts, finite rollers and transient steps do not have yet), where the Carreau law with a limiting shear stress settled";
 
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges

@@ -108,11 +108,12 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
 
 /// What to add to the reason `termination` of a thermal run of `case` with the Eyring law that
 /// failed (None when it converged, was cancelled, has no `[thermal]` or another law): what the
-/// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa near 1 GPa
-/// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): two balls did not settle (far past tau_0 the flow factor of a column at the outlet's pressure spike
-/// moves by up to a factor of 2 between outer iterations, which lagged factors cannot
-/// follow), the other steady lines settled with Newton's method on the coupled problem, and
-/// the Carreau law with a limiting shear stress settled in the same contacts.
+/// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa from 0.77 GPa on
+/// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): two balls at 0.77 GPa did not settle
+/// (far past tau_0 the flow factor of a column at the outlet's pressure spike moves by up to a
+/// factor of 2 between outer iterations, which lagged factors cannot follow), the steady lines
+/// at 1-2 GPa settled with Newton's method on the coupled problem, and the Carreau law with a
+/// limiting shear stress settled in the same contacts.
 pub fn rheology_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     case.thermal.as_ref()?;
     let eyring = matches!(
