@@ -533,7 +533,7 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
 /// failed, not cancelled, thermal Eyring run. `ehl check` notes beforehand an Eyring case at
 /// 1 GPa whose solution rests on the fixed point alone (`eyring_without_newton`: a line with
 /// `thermal.coupled_newton = false`, a 2D contact, a transient run), not at 0.5 GPa, and not a
-/// steady line with the coupled Newton method (the scan's 4 such lines at 1-2 GPa settle).
+/// steady line with the coupled Newton method (the scan's 7 such lines at 1-2 GPa all settle).
 #[test]
 fn a_failed_thermal_eyring_run_names_the_known_limit() {
     let eyring = r#"lubricant.rheology={model="eyring",eyring_stress=5e6}"#;

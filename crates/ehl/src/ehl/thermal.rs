@@ -108,8 +108,8 @@ pub struct ThermalParams {
     /// thermal map (docs/thermal.md) 19 of 20 runs settled instead of 15 when it came, in 483
     /// outer iterations instead of 909 (501 since capped columns carry their flux with the
     /// capped profile), in 10-15 % more time; 18 since the compression's capped gradient
-    /// (2026-11-29). The Eyring lines of the robustness scan at 1-2 GPa settle with it
-    /// (2026-12-01), all 4.
+    /// (2026-11-29). The 7 Eyring lines of the robustness scan at 1-2 GPa all settle with it
+    /// (2026-12-01; 4 of them did not before).
     pub coupled_newton: bool,
 }
 

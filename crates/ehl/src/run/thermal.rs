@@ -110,9 +110,9 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
 /// failed (None when it converged, was cancelled, has no `[thermal]` or another law): what the
 /// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa from 0.77 GPa on
 /// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): two balls at 0.77 GPa did not settle
-/// (far past tau_0 the flow factor of a column at the outlet's pressure spike moves by up to a
-/// factor of 2 between outer iterations, which lagged factors cannot follow), the steady lines
-/// at 1-2 GPa settled with Newton's method on the coupled problem, and the Carreau law with a
+/// (not traced; on the lines, which did not either before 2026-12-01, a spike column's flux
+/// match had more than one root: docs/thermal.md, "The Eyring lines settle"), the steady lines
+/// at 1-2 GPa settle with Newton's method on the coupled problem, and the Carreau law with a
 /// limiting shear stress settled in the same contacts.
 pub fn rheology_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     case.thermal.as_ref()?;

@@ -451,13 +451,13 @@ pub const WARM_FLUX_RESOLVES: usize = 1;
 /// gain is |1 - slope|; a Newtonian column's slope is 1, a Carreau column's between 1 and 1/n).
 /// Outside, the column's gradient is the root of a(g) g = q_P nearest the pressure's own
 /// gradient. Measured on an Eyring line at 1 GPa (tau_0 = 5 MPa, SRR 0.1; docs/thermal.md,
-/// "Robustness beyond the examples", "The Eyring lines settle"): at the outlet's pressure spike the Poiseuille stress h |dp/dx| / 2 is
-/// several tau_0, and with sliding the Poiseuille coefficient of the secant viscosities falls
-/// as the gradient grows (slope -3 there), so a(g) g = q_P has a second root at 2.4 times the
-/// pressure's gradient; the plain re-solves drifted to it over the film iterations, and the
-/// temperature solve ran away (3990 K). The lower bound lies below the contraction's, 0: a
-/// column capped by the limiting shear stress, whose flux barely moves with g (slope ~0),
-/// keeps its plain re-solves, as before.
+/// "Robustness beyond the examples", "The Eyring lines settle"): at the outlet's pressure spike the
+/// Poiseuille stress h |dp/dx| / 2 is several tau_0, and with sliding the Poiseuille coefficient of
+/// the secant viscosities falls as the gradient grows (slope -3 there), so a(g) g = q_P has a
+/// second root at 2.4 times the pressure's gradient; the plain re-solves drifted to it over the
+/// film iterations, and the temperature solve ran away (3990 K). The lower bound lies below the
+/// contraction's, 0: a column capped by the limiting shear stress, whose flux barely moves with g
+/// (slope ~0), keeps its plain re-solves, as before.
 const UNSTABLE_FLUX_SLOPE: (f64, f64) = (-0.5, 2.0);
 
 /// The least step in ln |g| between two re-solves over which their slope is taken
@@ -1906,21 +1906,25 @@ mod tests {
     /// outlet spike of an Eyring line at 1 GPa) has its Poiseuille flux a(g) g falling as the
     /// gradient grows past ~1.1 times 3e13 Pa/m (the secant viscosities' coefficient (rho/eta)_e
     /// falls faster than g grows), so a(g) g = q_P has three roots: 0.8, 1.5 (the pressure's
-    /// own) and between 3 and 4.5 times 3e13 Pa/m. With q_P that of the pressure's gradient and the column
-    /// started warm from the coefficient at 5 % more gradient, the plain re-solve (gain |1 -
-    /// slope| > 1 there) leaves the pressure's root; the column must end on it: its coefficient
-    /// (rho/eta)_e that of the profile at the pressure's gradient to 1e-8 (the root's
-    /// tolerance is 1e-12 in ln (a g / q_P); the profile solve's own, 1e-10 in ln eta, sets
-    /// the margin). Fails with the plain re-solve alone (measured:
-    /// the coefficient 14 % off after the one warm re-solve) and with a search that steps one
+    /// own) and between 3 and 4.5 times 3e13 Pa/m. The whole flux of the profile grows
+    /// monotonically with -g all the same (asserted from 0 to 5 times the pressure's gradient:
+    /// a film whose shear rate grows with its stress), so the roots come from the split into
+    /// parts, not from the law. With q_P that of the pressure's gradient and the column
+    /// started warm from the coefficient at 5 % more gradient, the plain re-solve (gain
+    /// |1 - slope| > 1 there) leaves the pressure's root; the column must end on it: its
+    /// coefficient (rho/eta)_e that of the profile at the pressure's gradient to 1e-8 (the
+    /// root's tolerance is 1e-12 in ln (a g / q_P); the profile solve's own, 1e-10 in ln eta,
+    /// sets the margin). Fails with the plain re-solve alone (measured: the coefficient 14 %
+    /// off after the one warm re-solve) and with a search that steps one
     /// way only, against the sign of the mismatch at the pressure's gradient (measured: the
     /// mismatch there is at the profile solve's noise, and the search ended on the lower root,
     /// (rho/eta)_e 11.9 against 6.34). Started warm next to the lower root, where the plain
     /// re-solve contracts, the column stays there (its coefficient within 2 % of that root's,
     /// 11.9 against 6.34 at the pressure's; the warm start lies within 1 % in g of the root,
-    /// the scan's step, and the coefficient moves by about twice that), unless [`LineOptions::nearest_root`] is set: then
-    /// it takes the pressure's root. The preconditions, that the flux falls at the pressure's
-    /// gradient and has a root on each side, are asserted.
+    /// the scan's step, and the coefficient moves by about twice that), unless
+    /// [`LineOptions::nearest_root`] is set: then it takes the pressure's root. The
+    /// preconditions, that the flux falls at the pressure's gradient and has a root on each
+    /// side, are asserted.
     #[test]
     fn an_unstable_flux_driven_column_keeps_the_root_of_its_pressure_gradient() {
         let rule = Lobatto::new(7);
@@ -1951,6 +1955,37 @@ mod tests {
         };
         let flux = |g: f64| -coefficient(g) * h.powi(3) / 12.0 * g;
         let q = flux(g_line);
+        // not the physics going wrong: the whole flux of the profile (Poiseuille and
+        // Couette parts) grows monotonically with the pressure-driven push -g, as a film whose
+        // shear rate grows with its stress must; only its split into parts by the secant
+        // viscosities is not monotone
+        let total = |g: f64| {
+            let col = crate::thermal::film::Column {
+                h,
+                dpdx: g,
+                dpdy: 0.0,
+                u1,
+                u2,
+            };
+            crate::thermal::film::shear_thinning_profile(
+                &rule,
+                &EyringFilm,
+                &col,
+                0.0,
+                &[T0; 7],
+                &[1e4; 7],
+                &[870.0; 7],
+                ShearOptions::default(),
+            )
+            .unwrap()
+            .profile
+            .flux_x
+        };
+        let totals: Vec<f64> = (0..=25).map(|k| total(g_line * 0.2 * k as f64)).collect();
+        assert!(
+            totals.windows(2).all(|w| w[1] > w[0]),
+            "whole flux against the gradient: {totals:?}"
+        );
         // the preconditions: a falling flux at the pressure's gradient, roots on both sides
         assert!(flux(1.05 * g_line) < q && flux(0.95 * g_line) > q);
         assert!(flux(0.5 * g_line) < q && flux(3.0 * g_line) > q && flux(2.0 * g_line) < q);
