@@ -507,19 +507,9 @@ fn run(
                 contact.inner_residual(),
             )
         {
-            // the polish freezes the film's extent: from now on its start holds against
-            // small moves (see `crate::thermal::contact::INLET_FILM_HYSTERESIS`)
-            contact.options.inlet_hysteresis = true;
             let saved = (st.clone(), sys.thermal.clone());
-            match super::thermal_newton::polish(
-                &mut sys,
-                &mut st,
-                contact,
-                ph,
-                hs,
-                params.tolerance,
-                POLISH_TOLERANCE * thermal.tolerance_k,
-                &mut stats,
+            match polish_line(
+                &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
             ) {
                 Ok(pol) => {
                     coupled_steps += pol.steps;
@@ -632,16 +622,8 @@ fn run(
                 st = st_base.clone();
                 sys.thermal = Some(base.clone());
                 sys.eval(&mut st);
-                contact.options.inlet_hysteresis = true;
-                if let Ok(pol) = super::thermal_newton::polish(
-                    &mut sys,
-                    &mut st,
-                    contact,
-                    ph,
-                    hs,
-                    params.tolerance,
-                    POLISH_TOLERANCE * thermal.tolerance_k,
-                    &mut stats,
+                if let Ok(pol) = polish_line(
+                    &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
                 ) {
                     coupled_steps += pol.steps;
                     polishing.reached(outer);
@@ -695,6 +677,35 @@ fn run(
         newton_steps,
         coupled_newton_steps: coupled_steps,
     }
+}
+
+/// Newton's method on the coupled problem of a line contact (`super::thermal_newton::polish`)
+/// from the state `st` of `sys`, the Reynolds rows to the case's tolerance and the temperature
+/// rows to [`POLISH_TOLERANCE`] of [`ThermalParams::tolerance_k`]. The polish freezes the
+/// film's extent: from now on its start holds against small moves (see
+/// `crate::thermal::contact::INLET_FILM_HYSTERESIS`).
+#[allow(clippy::too_many_arguments)]
+fn polish_line(
+    sys: &mut System,
+    st: &mut State,
+    contact: &mut ThermalContact,
+    ph: f64,
+    hs: f64,
+    params: &EhlParams,
+    thermal: &ThermalParams,
+    stats: &mut Stats,
+) -> Result<super::thermal_newton::Polished, String> {
+    contact.options.inlet_hysteresis = true;
+    super::thermal_newton::polish(
+        sys,
+        st,
+        contact,
+        ph,
+        hs,
+        params.tolerance,
+        POLISH_TOLERANCE * thermal.tolerance_k,
+        stats,
+    )
 }
 
 /// The pressure (Pa) and film (m; infinite where there is no material) of the evaluated state

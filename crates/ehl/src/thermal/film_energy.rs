@@ -1931,7 +1931,8 @@ mod tests {
         let nz = rule.len();
         let (h, g_line) = (0.64e-6, -4.5e13);
         let (u1, u2) = (5.25, 4.75);
-        let coefficient = |g: f64| {
+        // the column's profile at the gradient g, cold
+        let profile = |g: f64| {
             let col = crate::thermal::film::Column {
                 h,
                 dpdx: g,
@@ -1951,37 +1952,17 @@ mod tests {
             )
             .unwrap()
             .profile
-            .rho_over_eta_e
         };
+        let coefficient = |g: f64| profile(g).rho_over_eta_e;
         let flux = |g: f64| -coefficient(g) * h.powi(3) / 12.0 * g;
         let q = flux(g_line);
         // not the physics going wrong: the whole flux of the profile (Poiseuille and
         // Couette parts) grows monotonically with the pressure-driven push -g, as a film whose
         // shear rate grows with its stress must; only its split into parts by the secant
         // viscosities is not monotone
-        let total = |g: f64| {
-            let col = crate::thermal::film::Column {
-                h,
-                dpdx: g,
-                dpdy: 0.0,
-                u1,
-                u2,
-            };
-            crate::thermal::film::shear_thinning_profile(
-                &rule,
-                &EyringFilm,
-                &col,
-                0.0,
-                &[T0; 7],
-                &[1e4; 7],
-                &[870.0; 7],
-                ShearOptions::default(),
-            )
-            .unwrap()
-            .profile
-            .flux_x
-        };
-        let totals: Vec<f64> = (0..=25).map(|k| total(g_line * 0.2 * k as f64)).collect();
+        let totals: Vec<f64> = (0..=25)
+            .map(|k| profile(g_line * 0.2 * k as f64).flux_x)
+            .collect();
         assert!(
             totals.windows(2).all(|w| w[1] > w[0]),
             "whole flux against the gradient: {totals:?}"
