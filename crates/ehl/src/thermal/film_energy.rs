@@ -638,7 +638,8 @@ struct ColumnSlots<'a> {
 }
 
 /// The limiting shear stress (Bair & Winer 1979; thesis eq. 2.13-2.14) as a cap on the
-/// shear-thinning profile `s` of column `col` at pressure `p` (Pa), mid-film temperature `tmid`
+/// shear-thinning profile `s` of column `col` (its `profile` replaced in place; its `eta_eff`,
+/// the shear-thinning iteration's own, kept) at pressure `p` (Pa), mid-film temperature `tmid`
 /// (K) and densities `rho` (kg/m^3): where the largest |tau| exceeds tau_L, the effective
 /// viscosity is scaled down uniformly by tau_L / max |tau| (twice, the pressure-flow part not
 /// scaling), so that the sliding stress sits at the limit and the heating (tau^2 / eta) falls
@@ -672,10 +673,10 @@ fn capped_profile<L: FilmLaws + ?Sized>(
     p: f64,
     tmid: f64,
     range: f64,
-    s: &ShearThinningProfile,
+    s: &mut ShearThinningProfile,
     rho: &[f64],
-) -> Result<FilmProfile, FilmError> {
-    let mut f = s.profile.clone();
+) -> Result<(), FilmError> {
+    let f = &mut s.profile;
     if let Some(cap) = laws.limiting_shear_stress(p, tmid) {
         let blend = if range > 0.0 {
             (cap / range - 1.0).clamp(0.0, 1.0)
@@ -695,11 +696,11 @@ fn capped_profile<L: FilmLaws + ?Sized>(
                 }
                 let r = (cap / top).powf(blend);
                 eta_eff.iter_mut().for_each(|e| *e *= r);
-                f = super::film::velocity_profile(rule, col, &eta_eff, rho)?;
+                *f = super::film::velocity_profile(rule, col, &eta_eff, rho)?;
             }
         }
     }
-    Ok(f)
+    Ok(())
 }
 
 /// Column `i` of [`line_coefficients_from`]: the laws at its points, its profile (the
@@ -778,12 +779,14 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     // own gradient and the column's flux-driven one (see capped_profile)
     let tmid = ti[nz / 2];
     let range = col.h * line.dpdx[i].hypot(col.dpdy);
-    let cap = |col: &Column, s: &ShearThinningProfile| {
+    // (the profile is capped in place, not copied: ~1 KB per column and film iteration; see
+    // `film::velocity_profile` for what the two saved)
+    let cap = |col: &Column, s: &mut ShearThinningProfile| {
         let range = range.max(col.h * col.dpdx.hypot(col.dpdy));
         capped_profile(rule, laws, col, p, tmid, range, s, rho)
     };
     let mut s = profile(&col, warm.then_some(&*start))?;
-    let mut f = cap(&col, &s)?;
+    cap(&col, &mut s)?;
     // a flux-driven column: the pressure gradient that carries the target pressure-flow
     // flux q_P = -(rho/eta)_e h^3/12 dp/dx with this temperature's viscosity across z
     // (linear in dp/dx for a Newtonian film; a shear-thinning one is re-solved, at most
@@ -808,7 +811,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
         let mut unstable = opts.nearest_root;
         let mut n = 0;
         while !unstable {
-            let a = -f.rho_over_eta_e * col.h.powi(3) / 12.0;
+            let a = -s.profile.rho_over_eta_e * col.h.powi(3) / 12.0;
             let g = q[i] / a;
             if !g.is_finite() || (g - col.dpdx).abs() <= 1e-12 * g.abs().max(1.0) {
                 break;
@@ -835,7 +838,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
             }
             col.dpdx = g;
             s = profile(&col, Some(&s.eta_eff))?;
-            f = cap(&col, &s)?;
+            cap(&col, &mut s)?;
             n += 1;
         }
         let g_line = line.dpdx[i];
@@ -847,18 +850,18 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
             // warm start).
             let mut at = |col: &mut Column, u: f64| {
                 col.dpdx = g_line.signum() * u.exp();
-                let s = profile(col, Some(&s.eta_eff)).ok()?;
-                let f = cap(col, &s).ok()?;
-                let a = -f.rho_over_eta_e * col.h.powi(3) / 12.0;
+                let mut s = profile(col, Some(&s.eta_eff)).ok()?;
+                cap(col, &mut s).ok()?;
+                let a = -s.profile.rho_over_eta_e * col.h.powi(3) / 12.0;
                 let phi = (a * col.dpdx / q[i]).ln();
-                phi.is_finite().then_some((phi, s, f))
+                phi.is_finite().then_some((phi, s))
             };
             let kept = col.dpdx;
             let found = (|| {
                 let u_line = g_line.abs().ln();
-                let (p_line, sl, fl) = at(&mut col, u_line)?;
+                let (p_line, sl) = at(&mut col, u_line)?;
                 if p_line.abs() <= ROOT_TOLERANCE {
-                    return Some((u_line, sl, fl));
+                    return Some((u_line, sl));
                 }
                 // the last point tried below and above the pressure's gradient
                 let mut sides = [(u_line, p_line); 2];
@@ -868,35 +871,35 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
                     for (side, sign) in [(0, -1.0), (1, 1.0)] {
                         let (ua, pa) = sides[side];
                         let ub = u_line + sign * step;
-                        let (pb, sb, fb) = at(&mut col, ub)?;
+                        let (pb, sb) = at(&mut col, ub)?;
                         if pa * pb <= 0.0 {
-                            bracket = Some((ua, pa, ub, pb, sb, fb));
+                            bracket = Some((ua, pa, ub, pb, sb));
                             break 'search;
                         }
                         sides[side] = (ub, pb);
                     }
                     step *= 2.0;
                 }
-                let (mut ua, mut pa, mut ub, mut pb, mut sb, mut fb) = bracket?;
+                let (mut ua, mut pa, mut ub, mut pb, mut sb) = bracket?;
                 for _ in 0..ROOT_REFINE_STEPS {
                     if pb.abs() <= ROOT_TOLERANCE || pa == pb {
                         break;
                     }
                     let uc = (ua * pb - ub * pa) / (pb - pa);
-                    let (pc, sc, fc) = at(&mut col, uc)?;
+                    let (pc, sc) = at(&mut col, uc)?;
                     if pc * pb < 0.0 {
                         (ua, pa) = (ub, pb);
                     } else {
                         pa *= 0.5;
                     }
-                    (ub, pb, sb, fb) = (uc, pc, sc, fc);
+                    (ub, pb, sb) = (uc, pc, sc);
                 }
-                Some((ub, sb, fb))
+                Some((ub, sb))
             })();
             match found {
-                Some((u, sn, fnew)) => {
+                Some((u, sn)) => {
                     col.dpdx = g_line.signum() * u.exp();
-                    (s, f) = (sn, fnew);
+                    s = sn;
                 }
                 None => col.dpdx = kept,
             }
@@ -907,8 +910,9 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     for k in 0..nz {
         factors[k] = s.eta_eff[k] / eta[k];
     }
-    *out.poiseuille = f.rho_over_eta_e;
     let converged = s.converged;
+    let f = s.profile;
+    *out.poiseuille = f.rho_over_eta_e;
     for k in 0..nz {
         let at = i * nz + k;
         out.mass_flux[k] = col.h * rho[k] * f.u[k];
