@@ -126,7 +126,7 @@ pub fn eyring_without_newton(case: &Case) -> bool {
 /// What is known of thermal runs with the Eyring law at high pressure, said by `ehl check`
 /// (above [`EYRING_NOTE_PRESSURE`], where [`eyring_without_newton`]) and by a failed run's
 /// reason (`crate::run::thermal::rheology_hint`): one text, so the two never disagree.
-pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": two balls at 0.77 GPa; the steady lines at 1-2 GPa there settled with Newton's method on the coupled problem, which point contacts, finite rollers and transient steps do not have yet), where the Carreau law with a limiting shear stress settled";
+pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": a ball at 0.77 GPa and 5 m/s; the steady lines at 1-2 GPa there settled with Newton's method on the coupled problem, which point contacts, finite rollers and transient steps do not have yet), where the Carreau law with a limiting shear stress settled";
 
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges
