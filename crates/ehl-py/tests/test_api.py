@@ -286,7 +286,11 @@ def test_thermal_solution_has_temperatures():
     assert t["film_section"].shape == (nz, 128) and t["section_z"].shape == (nz, 128)
     # the summary's maximum is the maximum of the map (NaN where no film was solved)
     assert np.nanmax(t["max_film"]) == pytest.approx(sol.summary["max_film_temperature_k"], rel=1e-15)
-    assert t["inlet"] == 313.0 and np.nanmin(t["max_film"]) >= 313.0 - 30.0
+    # the hottest point across the film is at least its hotter surface's temperature (the
+    # surfaces are points of the section), and each body, heated by the sheared film upstream
+    # of every point (SRR 0.3; Jaeger's moving source), stays above the inlet temperature:
+    # measured at least 313.01 K on both surfaces and 319.6 K for the film's hottest point
+    assert t["inlet"] == 313.0 and np.nanmin(t["max_film"]) > 313.0
     # an isothermal run has none
     assert ehl.solve(small_ehl(), progress=False).temperature is None
 

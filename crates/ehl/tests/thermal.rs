@@ -1243,7 +1243,8 @@ fn a_fast_sliding_ball_settles_with_either_oil() {
 /// whole film's mass imbalance already within its loose tolerance, took no Newton step, and
 /// left the next update the same pressure (measured before 2026-12-02: 39 outer iterations on
 /// this grid, and unsettled after 80 on the scan's 97^2). Each solve now removes at least
-/// 90 % of the imbalance the new factors leave (`ehl::thermal`, `REYNOLDS_REDUCTION`):
+/// 90 % of the imbalance the new factors leave, or down to the case's tolerance
+/// (`ehl::thermal`, `REYNOLDS_REDUCTION`):
 /// measured 11 outer iterations, the central film within 4e-8 and the friction within 5e-7 of
 /// the stalled run's. Asked: settled, the energy balance within the 1 %, and at most
 /// 20 outer iterations (the stalled run's 39 fail it; twice the measured 11 leaves room for

@@ -102,8 +102,9 @@ pub struct ThermalCheck {
 /// `ehl check` notes a thermal case with the Eyring law from this Hertz pressure (Pa) on where
 /// the contact has the thermal fixed point alone ([`eyring_without_newton`]): in the robustness
 /// scan of docs/thermal.md thermal Eyring runs (tau_0 = 5 MPa) settled at 0.5 GPa, and of the
-/// balls at 0.77 GPa 2 of 4 did not. (Four of the 7 Eyring lines at 1-2 GPa did not either
-/// before 2026-12-01; with Newton's method on the coupled problem all 7 settle.)
+/// balls at 0.77 GPa 1 of 4 does not (2 before 2026-12-02). (Four of the 7 Eyring lines at
+/// 1-2 GPa did not either before 2026-12-01; with Newton's method on the coupled problem all 7
+/// settle.)
 pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
 /// A thermal case with the Eyring law whose solution rests on the thermal fixed point alone: a
