@@ -625,7 +625,7 @@ fn a_failed_thermal_eyring_run_names_the_known_limit() {
 #[test]
 fn eyring_lines_far_past_the_eyring_stress_settle() {
     let text = format!(
-        "{}{}",
+        "{}{SCAN_OIL}{OIL}",
         r#"title = "an Eyring line at 1 GPa"
 kind = "ehl"
 
@@ -656,20 +656,7 @@ ny = 1
 x_min = -4.0
 x_max = 1.5
 
-[lubricant]
-viscosity = 0.05
-pressure_viscosity_coefficient = 2.0e-8
-density = 870.0
-viscosity_model = "roelands"
-density_model = "dowson-higginson"
-rheology = { model = "eyring", eyring_stress = 5e6 }
-
-[solver]
-tolerance = 1e-6
-max_iterations = 200
-
-"#,
-        OIL
+"#
     );
     let mut friction = Vec::new();
     for srr in ["0.1", "0.5"] {
@@ -1251,7 +1238,7 @@ fn a_fast_sliding_ball_settles_with_either_oil() {
 /// another machine's rounding).
 #[test]
 fn an_eyring_ball_is_not_stalled_by_a_pressure_that_does_not_move() {
-    let text = r#"
+    let ball = r#"
 title = "thermal scan: ball"
 kind = "ehl"
 
@@ -1281,27 +1268,9 @@ x_max = 1.5
 y_min = -2.5
 y_max = 2.5
 
-[lubricant]
-viscosity = 0.05
-pressure_viscosity_coefficient = 2.0e-8
-density = 870.0
-viscosity_model = "roelands"
-density_model = "dowson-higginson"
-rheology = { model = "eyring", eyring_stress = 5e6 }
-
-[solver]
-tolerance = 1e-6
-max_iterations = 200
-
-[thermal]
-inlet_temperature = 313.0
-viscosity_temperature = 1.1
-thermal_expansion = 6.5e-4
-conductivity = 0.14
-heat_capacity = 2000.0
-points_across_film = 7
 "#;
-    let s = solve(&parse_str(text, "scan_ball.toml", &[]).unwrap());
+    let text = format!("{ball}{SCAN_OIL}{OIL}");
+    let s = solve(&parse_str(&text, "scan_ball.toml", &[]).unwrap());
     let err = settled(&s, "Eyring ball, SRR 0.5");
     let outer = s.summary.thermal_iterations.unwrap();
     println!(
@@ -1490,6 +1459,23 @@ fn temperature_png_has_maps_on_a_2d_grid() {
 const GROOVE: &str = include_str!("../../../examples/ehl_transient_line_groove.toml");
 
 /// The thermal table of the examples (thermal.md's typical mineral oil).
+/// The robustness scan's oil (docs/scripts/thermal_scan.py; eta0 = 0.05 Pa s, alpha =
+/// 20 /GPa, Roelands, Dowson-Higginson) with the Eyring law at tau_0 = 5 MPa, and its solver
+/// table; with [`OIL`] for its thermal properties.
+const SCAN_OIL: &str = r#"[lubricant]
+viscosity = 0.05
+pressure_viscosity_coefficient = 2.0e-8
+density = 870.0
+viscosity_model = "roelands"
+density_model = "dowson-higginson"
+rheology = { model = "eyring", eyring_stress = 5e6 }
+
+[solver]
+tolerance = 1e-6
+max_iterations = 200
+
+"#;
+
 const OIL: &str = "[thermal]\ninlet_temperature = 313.0\nviscosity_temperature = 1.1\nthermal_expansion = 6.5e-4\nconductivity = 0.14\nheat_capacity = 2000.0\n";
 
 /// The groove example (thesis Table 3.6 line, a 0.38 mm x 0.25 um groove on body 1) with
