@@ -1458,7 +1458,6 @@ fn temperature_png_has_maps_on_a_2d_grid() {
 
 const GROOVE: &str = include_str!("../../../examples/ehl_transient_line_groove.toml");
 
-/// The thermal table of the examples (thermal.md's typical mineral oil).
 /// The robustness scan's oil (docs/scripts/thermal_scan.py; eta0 = 0.05 Pa s, alpha =
 /// 20 /GPa, Roelands, Dowson-Higginson) with the Eyring law at tau_0 = 5 MPa, and its solver
 /// table; with [`OIL`] for its thermal properties.
@@ -1476,6 +1475,7 @@ max_iterations = 200
 
 "#;
 
+/// The thermal table of the examples (thermal.md's typical mineral oil).
 const OIL: &str = "[thermal]\ninlet_temperature = 313.0\nviscosity_temperature = 1.1\nthermal_expansion = 6.5e-4\nconductivity = 0.14\nheat_capacity = 2000.0\n";
 
 /// The groove example (thesis Table 3.6 line, a 0.38 mm x 0.25 um groove on body 1) with

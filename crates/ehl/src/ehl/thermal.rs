@@ -14,7 +14,8 @@
 //! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
 //!    from the last solution (from the second outer iteration on, its first linear solve to
 //!    [`super::ETA_WARM`]), the factors frozen, to a tolerance no tighter than the factors are
-//!    known (`reynolds_tolerance`).
+//!    known and at least a tenth of the mass imbalance the new factors leave
+//!    (`reynolds_tolerance`).
 //!    Where it fails, shorter plain steps of the factors are tried from the last pressure.
 //!
 //! The fixed point stops when the last Newton solve converged to the case's tolerance and
@@ -795,16 +796,17 @@ fn start_imbalance(sys: &System, st: &State) -> f64 {
 
 /// The least reduction of the mass imbalance that an outer iteration's Reynolds solve makes
 /// from where the new factors leave it at the last pressure ([`reynolds_tolerance`]; down to
-/// the case's tolerance at most): the pressure must answer the factors' step. The factors' residual is a largest value, often of
-/// a few columns, and the Reynolds tolerance a relative imbalance over the whole film (a 2-norm):
-/// an Anderson step that moved those columns' factors by 1 % left the imbalance below
-/// `LOOSE_REYNOLDS` x `residual`, the solve took no Newton step, the next update saw the same
-/// pressure, and the fixed point stalled, up to 5 outer iterations in a row at one residual
-/// until the mixing restarted (measured 2026-12-02 on the scan's ball with the Eyring law at
-/// SRR 0.5, docs/thermal.md "Robustness beyond the examples": its factors' residual stalled near
-/// 1e-2 for 80 outer iterations; with the reduction it settles in 16, its Eyring neighbours at
-/// SRR 1 in 21 instead of 31, the Carreau ball at SRR 1 in 13 instead of 27, the scan's lines
-/// and the thermal map unchanged or faster; of the benchmark cases the thesis roller, the
+/// the case's tolerance at most): the pressure must answer the factors' step. The factors'
+/// residual is a largest value, often of a few columns, and the Reynolds tolerance a relative
+/// imbalance over the whole film (a 2-norm): an Anderson step that moved those columns'
+/// factors by 1 % left the imbalance below `LOOSE_REYNOLDS` x `residual`, the solve took no
+/// Newton step, the next update saw the same pressure, and the fixed point stalled, up to 5
+/// outer iterations in a row at one residual until the mixing restarted (measured 2026-12-02
+/// on the scan's ball with the Eyring law at SRR 0.5, docs/thermal.md "Robustness beyond the
+/// examples": its factors' residual stalled near 1e-2 for 80 outer iterations; with the
+/// reduction it settles in 16, its Eyring neighbour at SRR 1 in 21 instead of 31, the Carreau
+/// ball at SRR 1 in 13 instead of 27, two of the scan's lines sooner, the others and the
+/// thermal map unchanged to the last digit; of the benchmark cases the thesis roller, the
 /// example line and the Carreau roller bit-identical, the example ball within 1e-8).
 const REYNOLDS_REDUCTION: f64 = 0.1;
 
