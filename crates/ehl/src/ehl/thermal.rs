@@ -231,14 +231,12 @@ impl PolishSchedule {
         let Some(&residual) = residuals.last() else {
             return false;
         };
+        let slow = remaining_outer(residuals, factor_tol) > POLISH_WORTH;
         outer >= self.next
             && outer < max_outer
             && self.reached_in_a_row < POLISH_RUN
-            && (self.repolish
-                || outer >= POLISH_LATE
-                || remaining_outer(residuals, factor_tol) > POLISH_WORTH)
-            && (residual <= POLISH_FACTOR_RESIDUAL
-                || (outer >= POLISH_LATE && remaining_outer(residuals, factor_tol) > POLISH_WORTH))
+            && (self.repolish || outer >= POLISH_LATE || slow)
+            && (residual <= POLISH_FACTOR_RESIDUAL || (outer >= POLISH_LATE && slow))
             && inner_k <= POLISH_INNER_RESIDUAL_K
     }
 
@@ -418,6 +416,24 @@ fn run(
     let mut check_polish = false;
     // a failed Reynolds solve was handed to the coupled Newton method (once a run)
     let mut rescued = false;
+    // a polished line taken as the fixed point's iterate (a polish the schedule asked for, or
+    // the rescue of a failed Reynolds solve), and on to the next outer iteration: its factors
+    // and Reynolds solve, the next update checking it, and the mixing's history and the
+    // near-linear regime dropped (the next estimate would span the polish's jump)
+    macro_rules! adopt_polish {
+        ($pol:expr) => {{
+            let pol = $pol;
+            coupled_steps += pol.steps;
+            polishing.reached(outer);
+            check_polish = true;
+            factors = pol.factors;
+            end = Some(pol.end);
+            tight = true;
+            mixing.clear();
+            near_linear = false;
+            continue;
+        }};
+    }
     while outer < thermal.max_outer {
         if crate::run::cancel::requested() {
             failure = Some(Termination::Cancelled);
@@ -512,17 +528,7 @@ fn run(
             match polish_line(
                 &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
             ) {
-                Ok(pol) => {
-                    coupled_steps += pol.steps;
-                    polishing.reached(outer);
-                    check_polish = true;
-                    factors = pol.factors;
-                    end = Some(pol.end);
-                    tight = true;
-                    mixing.clear();
-                    near_linear = false;
-                    continue;
-                }
+                Ok(pol) => adopt_polish!(pol),
                 Err(_) => {
                     polishing.failed(outer);
                     st = saved.0;
@@ -635,15 +641,7 @@ fn run(
                 if let Ok(pol) = polish_line(
                     &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
                 ) {
-                    coupled_steps += pol.steps;
-                    polishing.reached(outer);
-                    check_polish = true;
-                    factors = pol.factors;
-                    end = Some(pol.end);
-                    tight = true;
-                    mixing.clear();
-                    near_linear = false;
-                    continue;
+                    adopt_polish!(pol);
                 }
                 st = failed.0;
                 sys.thermal = failed.1;
@@ -1100,6 +1098,25 @@ mod tests {
     /// 0.125 -> 1e-4 at a contraction of 0.5 takes ln(8e-4) / ln(0.5) = 10.29; a sequence that
     /// does not contract never arrives; too short a history or a residual already below the
     /// stop asks for none (which keeps the fixed point going).
+    /// The outer Reynolds solve's tolerance: 1 % of the factors' residual, at most 1e-3, at most
+    /// a tenth of the imbalance the new factors leave, never below the case's tolerance, and the
+    /// case's own once the residual is within 10 times its stop.
+    #[test]
+    fn the_outer_reynolds_tolerance_answers_the_factors_step() {
+        let (tol, stop) = (1e-6, 1e-4);
+        // loose: 1 % of the residual where the start is large, at most 1e-3
+        assert_eq!(reynolds_tolerance(tol, 0.05, stop, 1.0), 0.01 * 0.05);
+        assert_eq!(reynolds_tolerance(tol, 0.5, stop, 1.0), LOOSE_REYNOLDS_MAX);
+        // a small start imbalance: at least 90 % of it removed
+        assert_eq!(reynolds_tolerance(tol, 0.05, stop, 1e-3), 0.1 * 1e-3);
+        // never below the case's tolerance
+        assert_eq!(reynolds_tolerance(tol, 0.05, stop, 1e-7), tol);
+        // near the stop: the case's tolerance whatever the start
+        assert_eq!(reynolds_tolerance(tol, 5e-4, stop, 1.0), tol);
+        // a NaN start (no film measured) leaves the other bounds
+        assert_eq!(reynolds_tolerance(tol, 0.05, stop, f64::NAN), 0.01 * 0.05);
+    }
+
     #[test]
     fn remaining_outer_iterations_of_a_geometric_sequence() {
         let r = [1.0, 0.5, 0.25, 0.125];
