@@ -324,20 +324,19 @@ pub fn velocity_profile(
     // loop (this runs once per film column and film iteration; with the in-place cap of
     // `film_energy::capped_profile`: the thesis roller with `[thermal]` at 128 x 256 on one
     // thread 3.27 -> 3.19 s CPU, medians of 5 alternating runs, bit-identical results)
-    let (mut stack, mut heap) = ([0.0f64; 4 * 16], Vec::new());
-    let work = scratch(&mut stack, &mut heap, 4 * n);
-    let (inv, rest) = work.split_at_mut(n);
-    let (zinv, rest) = rest.split_at_mut(n);
-    let (i0, i1) = rest.split_at_mut(n);
-    for k in 0..n {
-        inv[k] = 1.0 / eta[k];
-        zinv[k] = inv[k] * rule.points[k];
-    }
-    rule.apply(&rule.cumulative, inv, i0);
-    rule.apply(&rule.cumulative, zinv, i1);
-    i0.iter_mut().for_each(|v| *v *= h);
-    i1.iter_mut().for_each(|v| *v *= h * h);
-    let (f0, f1) = (i0[n - 1], i1[n - 1]);
+    let (mut stack, mut heap) = ([0.0f64; 2 * 16], Vec::new());
+    let work = scratch(&mut stack, &mut heap, 2 * n);
+    let (i0, i1) = work.split_at_mut(n);
+    let ColumnIntegrals {
+        f0,
+        f1,
+        rho_e,
+        rho_e1,
+        rho_e2,
+        eta_e,
+        eta_e1,
+        rho_over_eta_e,
+    } = column_integrals(rule, h, eta, rho, i0, i1);
     let tau_a = (col.u2 - col.u1 - col.dpdx * f1) / f0;
     let tau_b = -col.dpdy * f1 / f0;
     let zeros = || PointValues::from_elem(0.0, n);
@@ -351,18 +350,6 @@ pub fn velocity_profile(
         tau_zy[k] = tau_b + h * z * col.dpdy;
         heating[k] = (tau_zx[k] * tau_zx[k] + tau_zy[k] * tau_zy[k]) / eta[k];
     }
-    let rho_e = rule.integrate(rho);
-    let rho_e1 = (0..n)
-        .map(|k| rule.weights[k] * rho[k] * i0[k])
-        .sum::<f64>()
-        / h;
-    let rho_e2 = (0..n)
-        .map(|k| rule.weights[k] * rho[k] * i1[k])
-        .sum::<f64>()
-        / (h * h);
-    let eta_e = h / f0;
-    let eta_e1 = h * h / f1;
-    let rho_over_eta_e = 12.0 * (eta_e * rho_e1 / eta_e1 - rho_e2);
     let rho_star_ue = col.u1 * rho_e + (col.u2 - col.u1) * eta_e * rho_e1;
     let flux_x = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdx + rho_star_ue * h;
     let flux_y = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdy;
@@ -386,6 +373,78 @@ pub fn velocity_profile(
         flux_x,
         flux_y,
     })
+}
+
+/// The integrals across the film that a column's profile and its generalized Reynolds
+/// coefficients are built from (Yang & Wen 1990; see the module documentation), for the
+/// viscosity `eta` (Pa s) and density `rho` (kg/m^3) at the rule's points of a film `h` (m)
+/// thick. They depend on the viscosity and density across the film only, not on the pressure
+/// gradient or the surface speeds.
+#[derive(Debug, Clone, Copy)]
+pub struct ColumnIntegrals {
+    /// F0 = int_0^h dz / eta (m/(Pa s))
+    pub f0: f64,
+    /// F1 = int_0^h z dz / eta (m^2/(Pa s))
+    pub f1: f64,
+    /// rho_e = (1/h) int rho dz (kg/m^3)
+    pub rho_e: f64,
+    /// rho'_e (kg/(m^3 Pa s)), see [`FilmProfile::rho_e1`]
+    pub rho_e1: f64,
+    /// rho''_e (kg/(m^3 Pa s)), see [`FilmProfile::rho_e2`]
+    pub rho_e2: f64,
+    /// eta_e = h / F0 (Pa s)
+    pub eta_e: f64,
+    /// eta'_e = h^2 / F1 (Pa s)
+    pub eta_e1: f64,
+    /// (rho/eta)_e = 12 (eta_e rho'_e / eta'_e - rho''_e) (kg/(m^3 Pa s)), the Poiseuille
+    /// coefficient
+    pub rho_over_eta_e: f64,
+}
+
+/// [`ColumnIntegrals`] of a column; `i0`, `i1` (rule.len() values each) receive the cumulative
+/// integrals int_0^z dz'/eta and int_0^z z' dz'/eta at the points (m/(Pa s), m^2/(Pa s)).
+pub fn column_integrals(
+    rule: &Lobatto,
+    h: f64,
+    eta: &[f64],
+    rho: &[f64],
+    i0: &mut [f64],
+    i1: &mut [f64],
+) -> ColumnIntegrals {
+    let n = rule.len();
+    let (mut stack, mut heap) = ([0.0f64; 2 * 16], Vec::new());
+    let work = scratch(&mut stack, &mut heap, 2 * n);
+    let (inv, zinv) = work.split_at_mut(n);
+    for k in 0..n {
+        inv[k] = 1.0 / eta[k];
+        zinv[k] = inv[k] * rule.points[k];
+    }
+    rule.apply(&rule.cumulative, inv, i0);
+    rule.apply(&rule.cumulative, zinv, i1);
+    i0.iter_mut().for_each(|v| *v *= h);
+    i1.iter_mut().for_each(|v| *v *= h * h);
+    let (f0, f1) = (i0[n - 1], i1[n - 1]);
+    let rho_e = rule.integrate(rho);
+    let rho_e1 = (0..n)
+        .map(|k| rule.weights[k] * rho[k] * i0[k])
+        .sum::<f64>()
+        / h;
+    let rho_e2 = (0..n)
+        .map(|k| rule.weights[k] * rho[k] * i1[k])
+        .sum::<f64>()
+        / (h * h);
+    let eta_e = h / f0;
+    let eta_e1 = h * h / f1;
+    ColumnIntegrals {
+        f0,
+        f1,
+        rho_e,
+        rho_e1,
+        rho_e2,
+        eta_e,
+        eta_e1,
+        rho_over_eta_e: 12.0 * (eta_e * rho_e1 / eta_e1 - rho_e2),
+    }
 }
 
 /// `len` zeros for a column's scratch: the start of `stack` where they fit (no allocation in the

@@ -82,8 +82,8 @@
 
 use super::collocation::Lobatto;
 use super::film::{
-    shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile, OilThermal,
-    ShearOptions, ShearThinningProfile,
+    column_integrals, shear_thinning_profile_from, Column, FilmError, FilmLaws, FilmProfile,
+    OilThermal, ShearOptions, ShearThinningProfile,
 };
 use crate::linalg::anderson::Anderson;
 use crate::linalg::banded::Banded;
@@ -785,6 +785,28 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
         let range = range.max(col.h * col.dpdx.hypot(col.dpdy));
         capped_profile(rule, laws, col, p, tmid, range, s, rho)
     };
+    // a Newtonian flux-driven column: its Poiseuille coefficient does not depend on the
+    // pressure gradient, so the gradient that carries the target flux (below) is known before
+    // the profile, which is then solved once instead of twice a film iteration (the warm
+    // start's gradient is the last temperature's); the same arithmetic as the re-solve below,
+    // so the same profile (to rounding: the re-solve kept a warm gradient within 1e-12 of it)
+    if let Some(q) = line.poiseuille_flux_x {
+        if (0..nz).all(|k| {
+            matches!(
+                laws.ln_shear_law(p, ti[k]),
+                Some(crate::lubricant::rheology::LnShearLaw::Newtonian)
+            )
+        }) {
+            let (mut stack, mut heap) = ([0.0f64; 2 * 16], Vec::new());
+            let work = super::film::scratch(&mut stack, &mut heap, 2 * nz);
+            let (i0, i1) = work.split_at_mut(nz);
+            let c = column_integrals(rule, col.h, eta, rho, i0, i1);
+            let g = q[i] / (-c.rho_over_eta_e * col.h.powi(3) / 12.0);
+            if g.is_finite() {
+                col.dpdx = g;
+            }
+        }
+    }
     let mut s = profile(&col, warm.then_some(&*start))?;
     cap(&col, &mut s)?;
     // a flux-driven column: the pressure gradient that carries the target pressure-flow
