@@ -53,8 +53,9 @@
 //!   the y mass flux per unit zeta m_y = h rho v between the line and its neighbours at
 //!   y -+ dy, (1/dy) [m_n^- (T_N - T) + m_s^+ (T - T_S)] (faces n = j + 1/2, s = j - 1/2), and
 //!   the y-divergence (m_n - m_s)/dy in J. It couples the lines: the caller passes the
-//!   neighbours' temperatures and the face fluxes from its last iterate (lagged), the line's
-//!   own T implicit. With J carrying the divergence, the convection is the conservative
+//!   neighbours' temperatures and the face fluxes (lagged: its last iterate, or for the
+//!   temperatures a neighbour solved just before, `crate::thermal::contact`), the line's own
+//!   T implicit. With J carrying the divergence, the convection is the conservative
 //!   difference of the upwinded flux minus T times continuity, as along x, and the enthalpy a
 //!   line exchanges with its neighbours, [`LineEnergy::side_out`], cancels between lines up to
 //!   the lag.
@@ -126,8 +127,9 @@ pub struct Line<'a> {
 }
 
 /// The convection along y between a line and its neighbours at y + dy (north) and y - dy
-/// (south), per point (nx * nz, i-major), lagged: from the caller's last iterate (see the
-/// module docs). The surfaces do not move along y, so the fluxes at the wall points k = 0 and
+/// (south), per point (nx * nz, i-major), given: the neighbours' temperatures and the mass
+/// fluxes are the caller's (its last iterate, or a neighbour solved just before, see
+/// `crate::thermal::contact`). The surfaces do not move along y, so the fluxes at the wall points k = 0 and
 /// nz - 1 are zero.
 #[derive(Debug, Clone, Copy)]
 pub struct SideFlow<'a> {
