@@ -884,7 +884,7 @@ impl ThermalContact {
             parallel_columns: opts.parallel_columns && blocks.len() < rayon::current_num_threads(),
             ..*opts
         };
-        let solved: Vec<Vec<(usize, std::result::Result<LineSolution, FilmError>)>> = blocks
+        let solved: Vec<Vec<std::result::Result<LineSolution, FilmError>>> = blocks
             .into_par_iter()
             .map(|block| {
                 // the block's net y mass flux: the sweep goes with it
@@ -897,7 +897,8 @@ impl ThermalContact {
                     .map(|q| my[q])
                     .filter(|v| v.is_finite())
                     .sum();
-                let order: Vec<usize> = if net >= 0.0 {
+                let ahead = net >= 0.0;
+                let order: Vec<usize> = if ahead {
                     block.collect()
                 } else {
                     block.rev().collect()
@@ -940,19 +941,16 @@ impl ThermalContact {
                         }
                         Err(_) => None,
                     };
-                    out.push((at, s));
+                    out.push(s);
+                }
+                // back in the rows' order
+                if !ahead {
+                    out.reverse();
                 }
                 out
             })
             .collect();
-        let mut all: Vec<Option<std::result::Result<LineSolution, FilmError>>> =
-            (0..rows.len()).map(|_| None).collect();
-        for (at, s) in solved.into_iter().flatten() {
-            all[at] = Some(s);
-        }
-        all.into_iter()
-            .map(|s| s.expect("every row solved"))
-            .collect()
+        solved.into_iter().flatten().collect()
     }
 
     /// The y mass flux per unit zeta, h rho v (kg/(m s)), at every point (cell-major, nz per
