@@ -327,16 +327,8 @@ pub fn velocity_profile(
     let (mut stack, mut heap) = ([0.0f64; 2 * 16], Vec::new());
     let work = scratch(&mut stack, &mut heap, 2 * n);
     let (i0, i1) = work.split_at_mut(n);
-    let ColumnIntegrals {
-        f0,
-        f1,
-        rho_e,
-        rho_e1,
-        rho_e2,
-        eta_e,
-        eta_e1,
-        rho_over_eta_e,
-    } = column_integrals(rule, h, eta, rho, i0, i1);
+    let c = column_integrals(rule, h, eta, rho, i0, i1);
+    let (f0, f1) = (c.f0, c.f1);
     let tau_a = (col.u2 - col.u1 - col.dpdx * f1) / f0;
     let tau_b = -col.dpdy * f1 / f0;
     let zeros = || PointValues::from_elem(0.0, n);
@@ -350,9 +342,9 @@ pub fn velocity_profile(
         tau_zy[k] = tau_b + h * z * col.dpdy;
         heating[k] = (tau_zx[k] * tau_zx[k] + tau_zy[k] * tau_zy[k]) / eta[k];
     }
-    let rho_star_ue = col.u1 * rho_e + (col.u2 - col.u1) * eta_e * rho_e1;
-    let flux_x = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdx + rho_star_ue * h;
-    let flux_y = -rho_over_eta_e * h.powi(3) / 12.0 * col.dpdy;
+    let rho_star_ue = col.u1 * c.rho_e + (col.u2 - col.u1) * c.eta_e * c.rho_e1;
+    let flux_x = -c.rho_over_eta_e * h.powi(3) / 12.0 * col.dpdx + rho_star_ue * h;
+    let flux_y = -c.rho_over_eta_e * h.powi(3) / 12.0 * col.dpdy;
     Ok(FilmProfile {
         traction1: [tau_zx[0], tau_zy[0]],
         traction2: [-tau_zx[n - 1], -tau_zy[n - 1]],
@@ -363,12 +355,12 @@ pub fn velocity_profile(
         heating,
         f0,
         f1,
-        eta_e,
-        eta_e1,
-        rho_e,
-        rho_e1,
-        rho_e2,
-        rho_over_eta_e,
+        eta_e: c.eta_e,
+        eta_e1: c.eta_e1,
+        rho_e: c.rho_e,
+        rho_e1: c.rho_e1,
+        rho_e2: c.rho_e2,
+        rho_over_eta_e: c.rho_over_eta_e,
         rho_star_ue,
         flux_x,
         flux_y,
