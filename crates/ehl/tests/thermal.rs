@@ -1021,7 +1021,7 @@ fn the_side_flow_moves_heat_at_the_roller_ends_only() {
 /// within 1e-4 K (the iterations' own stop, `surface_tol`, is 1e-3 K; measured 3e-11 K).
 /// After 5 the swept one is at least 5 times nearer to it (measured 4.4e-4 against 5.2e-3 K;
 /// after 8, 1.7e-5 against 7.2e-4 K: the lagged side flow's error contracts by ~0.55 a step,
-/// the swept one's by ~0.2). Without the sweep (every block's lines on the last iterate) the
+/// the swept one's by ~0.35). Without the sweep (every block's lines on the last iterate) the
 /// second check fails; with a sweep that took a neighbour's temperatures at the wrong cells or
 /// rows, the first. (The side flow's coupling grows with 1/dy: on 64 rows it barely slows the
 /// iteration.)

@@ -158,7 +158,7 @@ pub struct ContactOptions {
     /// iteration's last steps contracted by ~0.8 a step with 1 and ~0.07 with 4 to 64 (the
     /// surface temperatures' change 2.7e-4 -> 1.6e-5 -> 1.1e-6 K with 8 against 2.8e-4 ->
     /// 8.2e-5 -> 6.6e-5 -> 5.4e-5 -> 4.4e-5 K with 1); 8 keeps 16 or more blocks (parallel
-    /// tasks) on grids from 129 lines
+    /// tasks) where 129 or more lines have a film
     pub sweep_lines: usize,
     /// hold a grid line's film start against small moves downstream
     /// ([`INLET_FILM_HYSTERESIS`]); off by default (the results of a run are then those of
@@ -880,8 +880,8 @@ impl ThermalContact {
             .map(|a| a..(a + block).min(rows.len()))
             .collect();
         // the columns of each line in parallel too while there are fewer than two blocks a
-        // thread: a block's lines go one after the other, so with 17 blocks (a 129-line ball)
-        // on 16 threads the last block would run alone (not measured on 16 cores: the device
+        // thread: a block's lines go one after the other, so with 17 blocks (a ball whose 129
+        // lines all have a film) on 16 threads the last block would run alone (not measured on 16 cores: the device
         // machine was not lent; on 2 threads the ball's 17 blocks keep the columns serial)
         let opts = LineOptions {
             parallel_columns: opts.parallel_columns

@@ -791,13 +791,15 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     // pressure gradient, so the gradient that carries the target flux (below) is known before
     // the profile, which is then solved once instead of twice a film iteration (the warm
     // start's gradient is the last temperature's); the same arithmetic as the re-solve below,
-    // so the same profile (to rounding: the re-solve kept a warm gradient within 1e-12 of it)
+    // so the same profile (to rounding: the re-solve kept a warm gradient within 1e-12 of it).
+    // Not with a limiting shear stress: its cap makes the coefficient depend on the gradient
+    // again, and the capped column's warm start is the better one
     if let Some(q) = line.poiseuille_flux_x {
         if (0..nz).all(|k| {
             matches!(
                 laws.ln_shear_law(p, ti[k]),
                 Some(crate::lubricant::rheology::LnShearLaw::Newtonian)
-            )
+            ) && laws.limiting_shear_stress(p, ti[k]).is_none()
         }) {
             let (mut stack, mut heap) = ([0.0f64; 2 * 16], Vec::new());
             let work = super::film::scratch(&mut stack, &mut heap, 2 * nz);
