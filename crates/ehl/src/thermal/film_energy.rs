@@ -129,8 +129,8 @@ pub struct Line<'a> {
 /// The convection along y between a line and its neighbours at y + dy (north) and y - dy
 /// (south), per point (nx * nz, i-major), given: the neighbours' temperatures and the mass
 /// fluxes are the caller's (its last iterate, or a neighbour solved just before, see
-/// `crate::thermal::contact`). The surfaces do not move along y, so the fluxes at the wall points k = 0 and
-/// nz - 1 are zero.
+/// `crate::thermal::contact`). The surfaces do not move along y, so the fluxes at the wall
+/// points k = 0 and nz - 1 are zero.
 #[derive(Debug, Clone, Copy)]
 pub struct SideFlow<'a> {
     /// 1 / dy (1/m)
@@ -2139,6 +2139,70 @@ mod tests {
         assert!(
             warm_solves <= 2 * nx && cold_solves > 2 * nx,
             "profile solves: {warm_solves} warm, {cold_solves} cold, {nx} columns"
+        );
+    }
+
+    /// [`ExpLaw`] that says it is Newtonian (`named`: `LnShearLaw::Newtonian`, as the
+    /// program's Newtonian laws do) or not (the general shear-thinning path, which finds
+    /// eta_eff = eta all the same).
+    struct NewtonianExp(ExpLaw, bool);
+
+    impl FilmLaws for NewtonianExp {
+        fn viscosity(&self, p: f64, t: f64) -> f64 {
+            self.0.viscosity(p, t)
+        }
+        fn density(&self, p: f64, t: f64) -> f64 {
+            self.0.density(p, t)
+        }
+        fn density_dt(&self, p: f64, t: f64) -> f64 {
+            self.0.density_dt(p, t)
+        }
+        fn ln_shear_law(&self, _: f64, _: f64) -> Option<crate::lubricant::rheology::LnShearLaw> {
+            self.1
+                .then_some(crate::lubricant::rheology::LnShearLaw::Newtonian)
+        }
+    }
+
+    /// A Newtonian flux-driven column takes the gradient that carries its flux from its
+    /// Poiseuille coefficient before its profile (`column_coefficients`): the flux-driven line
+    /// of [`a_flux_driven_line_started_warm_is_where_it_was`] with a Newtonian law (eta0 =
+    /// 0.5 Pa s falling by 0.03 1/K) solved cold to 1e-9 K through the named law and through
+    /// the general path ends at the same temperatures (1e-9 K: both iterations' tolerance;
+    /// measured 0) and carries the imposed flux to 1e-8 (the helper's tolerance); the
+    /// coefficients at its temperature, formed without a warm start, take one profile solve a
+    /// column through the named law and two through the general path (the first at the
+    /// line's own gradient), but for the first column, whose gradient and flux are 0 (the
+    /// sine's zero), where the line's gradient is already the root. Fails if the gradient from the coefficient is wrong (the flux
+    /// check) or not taken (the count).
+    #[test]
+    fn a_newtonian_flux_driven_column_is_solved_once() {
+        let rule = Lobatto::new(7);
+        let law = |named| NewtonianExp(ExpLaw::new(0.5, 0.03, 6.5e-4), named);
+        let case = FluxDrivenCase::new(5e12);
+        let (h, q, nx) = (&case.h, &case.q, case.h.len());
+        let line = case.line();
+        let opts = flux_driven_options();
+        let (named, general) = (law(true), law(false));
+        let a = solve_line_from(&rule, &named, &OIL, &line, None, None, &opts).unwrap();
+        let b = solve_line_from(&rule, &general, &OIL, &line, None, None, &opts).unwrap();
+        assert!(a.converged && b.converged);
+        let apart =
+            a.t.iter()
+                .zip(&b.t)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(apart < 1e-9, "named and general paths {apart:e} K apart");
+        assert_carries_flux(&a, h, q);
+        let solves = |l: &NewtonianExp| {
+            let (mut thin, mut nothing) = (vec![f64::NAN; nx * 7], vec![f64::NAN; nx]);
+            let (c, _, _) =
+                line_coefficients_from(&rule, l, &line, &a.t, &opts, &mut thin, &mut nothing)
+                    .unwrap();
+            c.profile_solves
+        };
+        let (once, twice) = (solves(&named), solves(&general));
+        assert!(
+            once == nx && twice == 2 * nx - 1,
+            "profile solves: {once} named, {twice} general, {nx} columns"
         );
     }
 
