@@ -1120,10 +1120,6 @@ mod tests {
         assert_eq!(m(Some(0.3), Some(0.9)), 1.0);
     }
 
-    /// The remaining outer iterations of a geometric residual sequence are its own count:
-    /// 0.125 -> 1e-4 at a contraction of 0.5 takes ln(8e-4) / ln(0.5) = 10.29; a sequence that
-    /// does not contract never arrives; too short a history or a residual already below the
-    /// stop asks for none (which keeps the fixed point going).
     /// The outer Reynolds solve's tolerance: 1 % of the factors' residual, at most 1e-3, at most
     /// a tenth of the imbalance the new factors leave, never below the case's tolerance, and the
     /// case's own once the residual is within 10 times its stop.
@@ -1143,6 +1139,10 @@ mod tests {
         assert_eq!(reynolds_tolerance(tol, 0.05, stop, f64::NAN), 0.01 * 0.05);
     }
 
+    /// The remaining outer iterations of a geometric residual sequence are its own count:
+    /// 0.125 -> 1e-4 at a contraction of 0.5 takes ln(8e-4) / ln(0.5) = 10.29; a sequence that
+    /// does not contract never arrives; too short a history or a residual already below the
+    /// stop asks for none (which keeps the fixed point going).
     #[test]
     fn remaining_outer_iterations_of_a_geometric_sequence() {
         let r = [1.0, 0.5, 0.25, 0.125];

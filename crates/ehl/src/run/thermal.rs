@@ -110,7 +110,8 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
 /// failed (None when it converged, was cancelled, has no `[thermal]` or another law): what the
 /// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa from 0.77 GPa on
 /// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): a ball at 0.77 GPa and 5 m/s did not
-/// settle (not traced; its neighbour at 1 m/s did not before 2026-12-02, stalled by Reynolds
+/// settle (traced: its outer map expands, local contraction estimates 1.3-5, which no damping
+/// of the lagged factors settles; its neighbour at 1 m/s did not before 2026-12-02, stalled by Reynolds
 /// solves that left its pressure unmoved; on the lines, which did not either before 2026-12-01,
 /// a spike column's flux match had more than one root: docs/thermal.md, "The Eyring lines
 /// settle", "The pressure answers every step of the factors"), the steady lines
