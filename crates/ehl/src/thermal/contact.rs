@@ -881,8 +881,9 @@ impl ThermalContact {
             .collect();
         // the columns of each line in parallel too while there are fewer than two blocks a
         // thread: a block's lines go one after the other, so with 17 blocks (a ball whose 129
-        // lines all have a film) on 16 threads the last block would run alone (not measured on 16 cores: the device
-        // machine was not lent; on 2 threads the ball's 17 blocks keep the columns serial)
+        // lines all have a film) on 16 threads the last block would run alone (not measured
+        // on 16 cores: the device machine was not lent; on 2 threads the ball's 17 blocks
+        // keep the columns serial)
         let opts = LineOptions {
             parallel_columns: opts.parallel_columns
                 && blocks.len() < 2 * rayon::current_num_threads(),

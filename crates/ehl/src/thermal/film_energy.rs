@@ -1800,21 +1800,28 @@ mod tests {
         }
     }
 
+    /// The low-shear laws of a test law wrapping an [`ExpLaw`] in its first field.
+    macro_rules! exp_law_base {
+        () => {
+            fn viscosity(&self, p: f64, t: f64) -> f64 {
+                self.0.viscosity(p, t)
+            }
+            fn density(&self, p: f64, t: f64) -> f64 {
+                self.0.density(p, t)
+            }
+            fn density_dt(&self, p: f64, t: f64) -> f64 {
+                self.0.density_dt(p, t)
+            }
+        };
+    }
+
     /// [`ExpLaw`] with Carreau shear thinning (G = 0.2 MPa, n = 0.5), so that a flux-driven
     /// column's pressure gradient is a fixed point (`FLUX_RESOLVES`), and a limiting shear
     /// stress (Pa, the same at every state) where the second field has one.
     struct ThinningLaw(ExpLaw, Option<f64>);
 
     impl FilmLaws for ThinningLaw {
-        fn viscosity(&self, p: f64, t: f64) -> f64 {
-            self.0.viscosity(p, t)
-        }
-        fn density(&self, p: f64, t: f64) -> f64 {
-            self.0.density(p, t)
-        }
-        fn density_dt(&self, p: f64, t: f64) -> f64 {
-            self.0.density_dt(p, t)
-        }
+        exp_law_base!();
         fn ln_effective_viscosity(&self, ln_eta: f64, ln_rate: f64, p: f64, t: f64) -> (f64, f64) {
             self.ln_shear_law(p, t).unwrap().eval(ln_eta, ln_rate)
         }
@@ -2148,15 +2155,7 @@ mod tests {
     struct NewtonianExp(ExpLaw, bool);
 
     impl FilmLaws for NewtonianExp {
-        fn viscosity(&self, p: f64, t: f64) -> f64 {
-            self.0.viscosity(p, t)
-        }
-        fn density(&self, p: f64, t: f64) -> f64 {
-            self.0.density(p, t)
-        }
-        fn density_dt(&self, p: f64, t: f64) -> f64 {
-            self.0.density_dt(p, t)
-        }
+        exp_law_base!();
         fn ln_shear_law(&self, _: f64, _: f64) -> Option<crate::lubricant::rheology::LnShearLaw> {
             self.1
                 .then_some(crate::lubricant::rheology::LnShearLaw::Newtonian)
@@ -2172,8 +2171,8 @@ mod tests {
     /// coefficients at its temperature, formed without a warm start, take one profile solve a
     /// column through the named law and two through the general path (the first at the
     /// line's own gradient), but for the first column, whose gradient and flux are 0 (the
-    /// sine's zero), where the line's gradient is already the root. Fails if the gradient from the coefficient is wrong (the flux
-    /// check) or not taken (the count).
+    /// sine's zero), where the line's gradient is already the root. Fails if the gradient
+    /// from the coefficient is wrong (the flux check) or not taken (the count).
     #[test]
     fn a_newtonian_flux_driven_column_is_solved_once() {
         let rule = Lobatto::new(7);
