@@ -167,7 +167,7 @@ pub struct Summary {
     /// its steady start)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal_iterations: Option<usize>,
-    /// `[thermal]`, steady line contacts: Newton steps of the coupled method
+    /// `[thermal]`, steady contacts: Newton steps of the coupled method
     /// (`thermal.coupled_newton`) that ended in a solution (0: the fixed point settled on its
     /// own)
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -531,9 +531,10 @@ fn a_thermal_run_beyond_the_known_loading_says_so() {
 /// that settled; the same run with its Carreau oil, and the Eyring run once settled (the
 /// example's speed and load, 256 cells), say nothing of it. The hint itself: only for a
 /// failed, not cancelled, thermal Eyring run. `ehl check` notes beforehand an Eyring case at
-/// 1 GPa whose solution rests on the fixed point alone (`eyring_without_newton`: a line with
-/// `thermal.coupled_newton = false`, a 2D contact, a transient run), not at 0.5 GPa, and not a
-/// steady line with the coupled Newton method (the scan's 7 such lines at 1-2 GPa all settle).
+/// 1 GPa whose solution rests on the fixed point alone (`eyring_without_newton`: a line or a
+/// ball with `thermal.coupled_newton = false`, a transient run), not at 0.5 GPa, and not a
+/// steady line or ball with the coupled Newton method (the scan's 7 such lines at 1-2 GPa and
+/// its 4 balls at 0.77 GPa all settle).
 #[test]
 fn a_failed_thermal_eyring_run_names_the_known_limit() {
     let eyring = r#"lubricant.rheology={model="eyring",eyring_stress=5e6}"#;
@@ -543,7 +544,7 @@ fn a_failed_thermal_eyring_run_names_the_known_limit() {
         all.extend(sets.iter().map(|s| s.to_string()));
         parse_str(THERMAL, "ehl_thermal_line.toml", &all).unwrap()
     };
-    let hint = "thermal runs with the Eyring law did not settle in some cases";
+    let hint = "thermal runs with the Eyring law did not settle on the thermal fixed point alone";
     for sets in [
         &[eyring, "thermal.max_iterations=2"][..],
         &[eyring, alone, "thermal.max_iterations=2"][..],
@@ -588,7 +589,14 @@ fn a_failed_thermal_eyring_run_names_the_known_limit() {
         &[eyring.to_string()],
     )
     .unwrap();
-    assert!(eyring_without_newton(&ball));
+    assert!(!eyring_without_newton(&ball));
+    let ball_alone = parse_str(
+        include_str!("../../../examples/ehl_thermal_ball.toml"),
+        "ehl_thermal_ball.toml",
+        &[eyring.to_string(), alone.to_string()],
+    )
+    .unwrap();
+    assert!(eyring_without_newton(&ball_alone));
     let passage = parse_str(
         include_str!("../../../examples/ehl_thermal_transient_groove.toml"),
         "ehl_thermal_transient_groove.toml",
@@ -1308,7 +1316,21 @@ fn a_fast_sliding_ball_settles_with_either_oil() {
 /// another machine's rounding).
 #[test]
 fn an_eyring_ball_is_not_stalled_by_a_pressure_that_does_not_move() {
-    let ball = r#"
+    let text = format!("{SCAN_BALL}{SCAN_OIL}{OIL}");
+    let s = solve(&parse_str(&text, "scan_ball.toml", &[]).unwrap());
+    let err = settled(&s, "Eyring ball, SRR 0.5");
+    let outer = s.summary.thermal_iterations.unwrap();
+    println!(
+        "outer iterations {outer}, balance {err:.1e}, f {:.4}, central film {:.4e} m",
+        s.summary.friction_coefficient.unwrap(),
+        s.summary.central_film_m.unwrap()
+    );
+    assert!(outer <= 20, "{outer} outer iterations");
+}
+
+/// The robustness scan's ball at 1 m/s and SRR 0.5 (see the test above), 49^2 cells; the
+/// oil is `SCAN_OIL`'s Eyring oil.
+const SCAN_BALL: &str = r#"
 title = "thermal scan: ball"
 kind = "ehl"
 
@@ -1339,16 +1361,54 @@ y_min = -2.5
 y_max = 2.5
 
 "#;
-    let text = format!("{ball}{SCAN_OIL}{OIL}");
-    let s = solve(&parse_str(&text, "scan_ball.toml", &[]).unwrap());
-    let err = settled(&s, "Eyring ball, SRR 0.5");
-    let outer = s.summary.thermal_iterations.unwrap();
-    println!(
-        "outer iterations {outer}, balance {err:.1e}, f {:.4}, central film {:.4e} m",
-        s.summary.friction_coefficient.unwrap(),
-        s.summary.central_film_m.unwrap()
+
+/// The scan's Eyring ball at 5 m/s (p_h 0.77 GPa, SRR 0.5, tau_0 = 5 MPa; docs/thermal.md,
+/// "Robustness beyond the examples"): on the fixed point alone its outer map expands
+/// (contraction estimates 1.3-5), and on 81^2 and the scan's 97^2 cells it was unsettled
+/// after 80 outer iterations (measured 2026-12-02). A ball or finite roller slow at its 20th
+/// outer iteration is handed to Newton's method on the coupled problem (`ehl::thermal_newton`,
+/// the 2D coupled residual of `thermal::contact`): 81^2 then settles in 21 (the polish at the
+/// 20th from a factors' residual of 0.71: 3 Newton steps, 41 GMRES iterations), 97^2 in 22.
+/// Here 65^2 cells, where the fixed point alone still settles, slowly (52 outer iterations):
+/// the polished run settles in 21 and lands on the same solution (measured: central film
+/// within 3e-7, friction within 1e-9, the largest film temperature within 2.4e-4 K). Asked:
+/// both settled with the energy balance within the issue's 1 %; the polished run in at most
+/// 30 outer iterations with Newton steps counted (the fixed point alone takes 52, so the test
+/// fails without the 2D polish); the two within what each run's stop leaves of its fixed
+/// point, twice: the film 2e-4 (2 x 1e-4 of the film tolerance), the largest film
+/// temperature 0.1 K (2 x 0.05 K), the friction 1e-3 (an Eyring stress far past tau_0 moves
+/// as beta / ln(2 eta u_s / (tau_0 h)), ~6e-3 per K here, over 0.1 K). ~8 s.
+#[test]
+fn an_eyring_ball_whose_fixed_point_expands_settles_with_newton() {
+    let text = format!("{SCAN_BALL}{SCAN_OIL}{OIL}");
+    let run = |newton: bool| {
+        let sets = [
+            "grid.nx=65".to_string(),
+            "grid.ny=65".to_string(),
+            "motion.entrainment_speed=5.0".to_string(),
+            format!("thermal.coupled_newton={newton}"),
+        ];
+        solve(&parse_str(&text, "scan_ball.toml", &sets).unwrap())
+    };
+    let (a, b) = (run(true), run(false));
+    settled(&a, "Eyring ball at 5 m/s, polished");
+    settled(&b, "Eyring ball at 5 m/s, the fixed point alone");
+    let (ma, mb) = (&a.summary, &b.summary);
+    let outer = (
+        ma.thermal_iterations.unwrap(),
+        mb.thermal_iterations.unwrap(),
     );
-    assert!(outer <= 20, "{outer} outer iterations");
+    let film = ma.central_film_m.unwrap() / mb.central_film_m.unwrap() - 1.0;
+    let f = ma.friction_coefficient.unwrap() / mb.friction_coefficient.unwrap() - 1.0;
+    let t = ma.max_film_temperature_k.unwrap() - mb.max_film_temperature_k.unwrap();
+    println!(
+        "outer iterations {outer:?}, Newton steps {:?}: film {film:.1e}, friction {f:.1e}, \
+         largest film temperature {t:.1e} K",
+        ma.thermal_newton_steps
+    );
+    assert!(outer.0 <= 30, "{outer:?}");
+    assert!(ma.thermal_newton_steps.unwrap() > 0);
+    assert!(film.abs() < 2e-4 && f.abs() < 1e-3 && t.abs() < 0.1);
 }
 
 /// Swapping the surface speeds (SRR -> -SRR) of two identical bodies mirrors the thermal

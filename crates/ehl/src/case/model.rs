@@ -346,8 +346,9 @@ pub struct ThermalSpec {
     /// v dT/dy ([`crate::thermal::ContactOptions::side_flow`]); false keeps the grid lines
     /// independent
     pub side_flow: bool,
-    /// `coupled_newton` (default true): a line contact whose fixed point has not settled
-    /// after a few outer iterations is handed to Newton's method on the coupled problem
+    /// `coupled_newton` (default true): a steady contact whose fixed point has not settled
+    /// after a few outer iterations (a line) or 20 (a ball, a finite roller) is handed to
+    /// Newton's method on the coupled problem
     /// ([`crate::ehl::thermal::ThermalParams::coupled_newton`]); false: the fixed point alone
     pub coupled_newton: bool,
 }

@@ -111,7 +111,10 @@ pub struct ThermalParams {
     /// outer iterations instead of 909 (501 since capped columns carry their flux with the
     /// capped profile), in 10-15 % more time; 18 since the compression's capped gradient
     /// (2026-11-29). The 7 Eyring lines of the robustness scan at 1-2 GPa all settle with it
-    /// (2026-12-01; 4 of them did not before).
+    /// (2026-12-01; 4 of them did not before). A ball or finite roller is handed over only
+    /// from `POLISH_LATE` on when slow there (`PolishSchedule::due`); the robustness scan's
+    /// Eyring ball at 5 m/s, unsettled after 80 outer iterations on the fixed point alone,
+    /// settles in 22 with it (2026-12-02).
     pub coupled_newton: bool,
 }
 
@@ -142,7 +145,8 @@ pub const REFINED_POINTS_ACROSS_FILM: usize = 11;
 const ANDERSON_RESTART: usize = 5;
 
 /// A line contact's fixed point is handed to Newton's method on the coupled problem
-/// (`super::thermal_newton`) not before this outer iteration (its pace is measured over the
+/// (`super::thermal_newton`; a finite contact's later, [`PolishSchedule::due`]) not before this
+/// outer iteration (its pace is measured over the
 /// last three).
 const POLISH_FROM: usize = 4;
 
@@ -188,7 +192,7 @@ const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 /// guard the thermal map's results were unchanged to the last digit).
 const POLISH_RUN: usize = 3;
 
-/// When a line contact's fixed point is handed to Newton's method on the coupled problem
+/// When a contact's fixed point is handed to Newton's method on the coupled problem
 /// (`super::thermal_newton::polish`): from [`POLISH_FROM`], when slow ([`POLISH_WORTH`],
 /// [`POLISH_LATE`]) and near ([`POLISH_FACTOR_RESIDUAL`], or from [`POLISH_LATE`] on a slow
 /// one at any factors' residual; [`POLISH_INNER_RESIDUAL_K`]); again
@@ -221,6 +225,14 @@ impl PolishSchedule {
     /// `residuals` the factors' residual of every outer iteration so far (this one's last),
     /// `factor_tol` their stop, `inner_k` the temperature solve's own residual (K). Not at the
     /// last outer iteration: the contact's lines would not see the polished pressure.
+    ///
+    /// A finite contact (`finite`: a ball, a finite roller) is polished only from
+    /// [`POLISH_LATE`] on and when slow there (or again after a polish that reached a
+    /// solution): its polish costs far more than a line's, each GMRES iteration a film solve of
+    /// every row (measured, 2026-12-02: the thermal thesis pit's steady start at 256 x 256,
+    /// whose factors' residual a creeping film end holds at 2.5e-2 for a dozen outer
+    /// iterations, was polished at its 8th, 9th and 10th with 861, 484 and 337 GMRES
+    /// iterations, 204 s, where its fixed point settles in 24 outer iterations, 43 s).
     fn due(
         &self,
         outer: usize,
@@ -228,15 +240,18 @@ impl PolishSchedule {
         residuals: &[f64],
         factor_tol: f64,
         inner_k: f64,
+        finite: bool,
     ) -> bool {
         let Some(&residual) = residuals.last() else {
             return false;
         };
         let slow = remaining_outer(residuals, factor_tol) > POLISH_WORTH;
+        let late = outer >= POLISH_LATE;
+        let asked = if finite { late && slow } else { late || slow };
         outer >= self.next
             && outer < max_outer
             && self.reached_in_a_row < POLISH_RUN
-            && (self.repolish || outer >= POLISH_LATE || slow)
+            && (self.repolish || asked)
             && (residual <= POLISH_FACTOR_RESIDUAL || (outer >= POLISH_LATE && slow))
             && inner_k <= POLISH_INNER_RESIDUAL_K
     }
@@ -271,9 +286,10 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// map of 2026-11-28) it converged in pure rolling and at SRR 0.05 up to L = 22 (from L = 3.2
 /// or 6.8 with the retry at 11 points across the film), at SRR 0.3 up to 13, and at SRR 1 up
 /// to 3.2 but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin; with
-/// Newton's method on the coupled problem ([`ThermalParams::coupled_newton`], line contacts
-/// only) every run of that map settles up to L = 13 and all but SRR 1 at L = 22, but the
-/// limit stays: finite rollers and balls have the fixed point alone. The
+/// Newton's method on the coupled problem ([`ThermalParams::coupled_newton`]) every run of that
+/// map settles up to L = 13 and all but SRR 1 at L = 22, but the limit stays: finite rollers
+/// and balls are handed to it only late (from the 20th outer iteration), and it was not
+/// measured on them at high L. The
 /// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
 /// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
 /// it did not settle in 80). A run, steady or transient, that fails above it says so in its
@@ -512,18 +528,18 @@ fn run(
             stopped = true;
             break;
         }
-        // a line contact whose fixed point has not settled by now is handed to Newton's
+        // a contact whose fixed point has not settled by now is handed to Newton's
         // method on the coupled problem (see `super::thermal_newton`)
         // (not at the last outer iteration: the contact's lines would not see the polished
         // pressure)
         if thermal.coupled_newton
-            && grid.ny == 1
             && polishing.due(
                 outer,
                 thermal.max_outer,
                 &residuals,
                 thermal.factor_tolerance,
                 contact.inner_residual(),
+                grid.ny > 1,
             )
         {
             let saved = (st.clone(), sys.thermal.clone());
@@ -633,7 +649,8 @@ fn run(
             // handed once to Newton's method on the coupled problem, from the pressure before
             // that solve: the scan's Eyring line on Barus's law at 1 GPa failed so at its 17th
             // outer iteration, before a polish was due (docs/thermal.md, "The Eyring lines
-            // settle")
+            // settle"); not a 2D contact, whose polish costs a film solve of every row a GMRES
+            // iteration (its failed solves were not measured)
             if thermal.coupled_newton && grid.ny == 1 && !rescued {
                 rescued = true;
                 let failed = (st.clone(), sys.thermal.clone());
@@ -689,7 +706,7 @@ fn run(
     }
 }
 
-/// Newton's method on the coupled problem of a line contact (`super::thermal_newton::polish`)
+/// Newton's method on the coupled problem of a steady contact (`super::thermal_newton::polish`)
 /// from the state `st` of `sys`, the Reynolds rows to the case's tolerance and the temperature
 /// rows to [`POLISH_TOLERANCE`] of [`ThermalParams::tolerance_k`]. The polish freezes the
 /// film's extent: from now on its start holds against small moves (see
@@ -1186,10 +1203,11 @@ mod tests {
         let (tol, inner, max) = (1e-4, 0.1, 80);
         // a slow fixed point: contraction 0.9 an outer iteration, ~60 more to its stop
         let slow: Vec<f64> = (0..max).map(|k| 0.05 * 0.9f64.powi(k as i32)).collect();
-        let due = |s: &PolishSchedule, outer: usize| s.due(outer, max, &slow[..outer], tol, inner);
+        let due =
+            |s: &PolishSchedule, outer: usize| s.due(outer, max, &slow[..outer], tol, inner, false);
         let mut s = PolishSchedule::new();
         // (a history long enough for the pace estimate, so that only POLISH_FROM holds it back)
-        assert!((1..POLISH_FROM).all(|outer| !s.due(outer, max, &slow[..10], tol, inner)));
+        assert!((1..POLISH_FROM).all(|outer| !s.due(outer, max, &slow[..10], tol, inner, false)));
         let first = POLISH_FROM;
         for k in 0..POLISH_RUN {
             assert!(due(&s, first + k), "polish {k} of the run");
@@ -1218,12 +1236,12 @@ mod tests {
         // the other conditions
         let s = PolishSchedule::new();
         assert!(
-            !s.due(max, max, &slow, tol, inner),
+            !s.due(max, max, &slow, tol, inner, false),
             "the last outer iteration"
         );
         let far: Vec<f64> = slow.iter().map(|r| r * 10.0).collect();
         assert!(
-            !s.due(first, max, &far[..first], tol, inner),
+            !s.due(first, max, &far[..first], tol, inner, false),
             "residual {}",
             far[first - 1]
         );
@@ -1235,34 +1253,43 @@ mod tests {
             max,
             &wandering[..POLISH_LATE - 1],
             tol,
-            inner
+            inner,
+            false
         ));
-        assert!(s.due(POLISH_LATE, max, &wandering[..POLISH_LATE], tol, inner));
+        assert!(s.due(
+            POLISH_LATE,
+            max,
+            &wandering[..POLISH_LATE],
+            tol,
+            inner,
+            false
+        ));
         // but not one that is far and contracts fast (0.3 an iteration: 7 more to its stop)
         let closing: Vec<f64> = (0..POLISH_LATE)
             .map(|k| 0.5 * 0.3f64.powi(k as i32 + 1 - POLISH_LATE as i32))
             .collect();
-        assert!(!s.due(POLISH_LATE, max, &closing, tol, inner));
+        assert!(!s.due(POLISH_LATE, max, &closing, tol, inner, false));
         assert!(!s.due(
             first,
             max,
             &slow[..first],
             tol,
-            2.0 * POLISH_INNER_RESIDUAL_K
+            2.0 * POLISH_INNER_RESIDUAL_K,
+            false
         ));
         let fast: Vec<f64> = (0..max).map(|k| 0.05 * 0.3f64.powi(k as i32)).collect();
         assert!(
-            !s.due(first, max, &fast[..first], tol, inner),
+            !s.due(first, max, &fast[..first], tol, inner, false),
             "a fast fixed point"
         );
         // a fast fixed point is polished again at the next outer iteration after a polish that
         // reached a solution, not after one that failed
         let mut s = PolishSchedule::new();
         s.reached(first);
-        assert!(s.due(first + 1, max, &fast[..first + 1], tol, inner));
+        assert!(s.due(first + 1, max, &fast[..first + 1], tol, inner, false));
         s.failed(first + 1);
         let next = first + 1 + POLISH_EVERY;
-        assert!(!s.due(next, max, &fast[..first + 1], tol, inner));
+        assert!(!s.due(next, max, &fast[..first + 1], tol, inner, false));
         // a fast fixed point (contraction 0.3) still short of its stop: polished only from
         // POLISH_LATE on
         let late = |outer: usize| -> Vec<f64> {
@@ -1270,7 +1297,66 @@ mod tests {
                 .map(|k| 0.05 * 0.3f64.powi(k as i32 + 4 - outer as i32).min(1.0))
                 .collect()
         };
-        assert!(!s.due(POLISH_LATE - 1, max, &late(POLISH_LATE - 1), tol, inner));
-        assert!(s.due(POLISH_LATE, max, &late(POLISH_LATE), tol, inner));
+        assert!(!s.due(
+            POLISH_LATE - 1,
+            max,
+            &late(POLISH_LATE - 1),
+            tol,
+            inner,
+            false
+        ));
+        assert!(s.due(POLISH_LATE, max, &late(POLISH_LATE), tol, inner, false));
+    }
+
+    /// A finite contact is polished only from POLISH_LATE on, and only when slow there (its
+    /// polish costs a film solve of every row a GMRES iteration), or again at the next outer
+    /// iteration after a polish that reached a solution; a line is polished earlier.
+    #[test]
+    fn a_finite_contact_is_polished_only_late_and_slow() {
+        let (tol, inner, max) = (1e-4, 0.1, 80);
+        // slow (contraction 0.9, ~60 more outer iterations) and near (residual <= 0.05)
+        let slow: Vec<f64> = (0..max).map(|k| 0.05 * 0.9f64.powi(k as i32)).collect();
+        let s = PolishSchedule::new();
+        let first = POLISH_FROM;
+        assert!(
+            s.due(first, max, &slow[..first], tol, inner, false),
+            "a line"
+        );
+        assert!(
+            (first..POLISH_LATE).all(|o| !s.due(o, max, &slow[..o], tol, inner, true)),
+            "a finite contact before POLISH_LATE"
+        );
+        assert!(s.due(POLISH_LATE, max, &slow[..POLISH_LATE], tol, inner, true));
+        // late, but closing fast (contraction 0.3: 2 more to its stop): a line, not a finite
+        // contact
+        let fast: Vec<f64> = (0..POLISH_LATE)
+            .map(|k| 0.05 * 0.3f64.powi(k as i32 + 4 - POLISH_LATE as i32).min(1.0))
+            .collect();
+        assert!(s.due(POLISH_LATE, max, &fast, tol, inner, false));
+        assert!(!s.due(POLISH_LATE, max, &fast, tol, inner, true));
+        // far and wandering (an Eyring ball at 5 m/s): from POLISH_LATE on
+        let wandering: Vec<f64> = (0..max).map(|k| 1.0 + 0.5 * (k as f64).sin()).collect();
+        assert!(!s.due(
+            POLISH_LATE - 1,
+            max,
+            &wandering[..POLISH_LATE - 1],
+            tol,
+            inner,
+            true
+        ));
+        assert!(s.due(
+            POLISH_LATE,
+            max,
+            &wandering[..POLISH_LATE],
+            tol,
+            inner,
+            true
+        ));
+        // again after a polish that reached a solution, however fast
+        let mut s = PolishSchedule::new();
+        s.reached(POLISH_LATE);
+        let mut closing = fast.clone();
+        closing.push(fast[POLISH_LATE - 1] * 0.3);
+        assert!(s.due(POLISH_LATE + 1, max, &closing, tol, inner, true));
     }
 }

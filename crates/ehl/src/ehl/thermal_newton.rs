@@ -1,5 +1,6 @@
-//! Newton's method on the coupled steady thermal problem of a line contact: the pressure, h0,
-//! the film temperature across z and both surface temperatures solved as one system, as
+//! Newton's method on the coupled steady thermal problem of a contact, a line or a 2D one (a
+//! ball, a finite roller): the pressure, h0, the film temperature across z and both surface
+//! temperatures solved as one system, as
 //! Habchi et al. (Tribol. Lett. 30 (2008) 41) solve thermal EHL, here Jacobian-free
 //! (Knoll & Keyes, J. Comput. Phys. 193 (2004) 357).
 //!
@@ -39,6 +40,18 @@ const MAX_STEPS: usize = 12;
 /// GMRES restart length and most iterations per Newton step.
 const GMRES_RESTART: usize = 300;
 const GMRES_MAX_ITER: usize = 300;
+
+/// The restart is shortened so that GMRES's Krylov basis and preconditioned directions (two
+/// vectors an iteration) hold at most this many values (3.2e7: 256 MB): a finite contact of
+/// 256 x 256 cells has ~3.5e5 coupled unknowns, and 300 iterations' vectors would take 1.7 GB.
+/// Never below [`GMRES_MIN_RESTART`].
+const GMRES_MAX_VALUES: usize = 32_000_000;
+const GMRES_MIN_RESTART: usize = 30;
+
+/// The GMRES restart for `unknowns` coupled unknowns (see [`GMRES_MAX_VALUES`]).
+fn gmres_restart(unknowns: usize) -> usize {
+    (GMRES_MAX_VALUES / (2 * unknowns.max(1))).clamp(GMRES_MIN_RESTART, GMRES_RESTART)
+}
 
 /// A Newton step whose linear solve ends above this relative residual ends the polish: its
 /// direction is no Newton direction (the fixed point goes on instead).
@@ -147,7 +160,7 @@ pub(super) fn polish(
 ) -> Result<Polished, String> {
     let frame = contact
         .coupled_frame()
-        .ok_or("not a steady line contact with a solved film")?;
+        .ok_or("not a steady contact with a solved film")?;
     let n = sys.n();
     let m = contact.coupled_len(&frame);
     let big = n + 1 + m;
@@ -276,7 +289,7 @@ pub(super) fn polish(
                 &mut work,
                 &rhs,
                 &mut u,
-                GMRES_RESTART,
+                gmres_restart(big),
                 GMRES_MAX_ITER,
                 eta,
                 &mut matvec,

@@ -101,33 +101,34 @@ pub struct ThermalCheck {
 
 /// `ehl check` notes a thermal case with the Eyring law from this Hertz pressure (Pa) on where
 /// the contact has the thermal fixed point alone ([`eyring_without_newton`]): in the robustness
-/// scan of docs/thermal.md thermal Eyring runs (tau_0 = 5 MPa) settled at 0.5 GPa, and of the
-/// balls at 0.77 GPa 1 of 4 does not (2 before 2026-12-02). (Four of the 7 Eyring lines at
-/// 1-2 GPa did not either before 2026-12-01; with Newton's method on the coupled problem all 7
-/// settle.)
+/// scan of docs/thermal.md thermal Eyring runs (tau_0 = 5 MPa) settled at 0.5 GPa on the fixed
+/// point alone, and of the balls at 0.77 GPa 1 of 4 did not (2 before the first session of
+/// 2026-12-02). Four of the 7 Eyring lines at 1-2 GPa did not either before 2026-12-01; with
+/// Newton's method on the coupled problem all 7 settle, and so do the 4 balls since it polishes
+/// 2D contacts (2026-12-02).
 pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
-/// A thermal case with the Eyring law whose solution rests on the thermal fixed point alone: a
-/// 2D grid (point contacts, finite rollers), a line with `thermal.coupled_newton = false`, or a
-/// transient run (its time steps are the fixed point's; only a steady start is polished). A
-/// steady line hands a fixed point that does not settle to Newton's method on the coupled
-/// problem (`crate::ehl::thermal::ThermalParams::coupled_newton`), with which the Eyring lines
-/// of the robustness scan all settled (2026-12-01).
+/// A thermal case with the Eyring law whose solution rests on the thermal fixed point alone:
+/// `thermal.coupled_newton = false`, or a transient run (its time steps are the fixed point's;
+/// only a steady start is polished). A steady contact hands a fixed point that does not settle
+/// to Newton's method on the coupled problem
+/// (`crate::ehl::thermal::ThermalParams::coupled_newton`), with which the Eyring lines of the
+/// robustness scan all settled (2026-12-01), and its balls too since 2D contacts have it
+/// (2026-12-02).
 pub fn eyring_without_newton(case: &Case) -> bool {
     let eyring = case
         .lubricant
         .as_ref()
         .is_some_and(|l| matches!(l.rheology, crate::lubricant::Rheology::Eyring { .. }));
     let transient = case.motion.as_ref().is_some_and(|m| m.travel.is_some());
-    let newton =
-        case.thermal.as_ref().is_some_and(|t| t.coupled_newton) && case.grid.ny == 1 && !transient;
+    let newton = case.thermal.as_ref().is_some_and(|t| t.coupled_newton) && !transient;
     eyring && !newton
 }
 
 /// What is known of thermal runs with the Eyring law at high pressure, said by `ehl check`
 /// (above [`EYRING_NOTE_PRESSURE`], where [`eyring_without_newton`]) and by a failed run's
 /// reason (`crate::run::thermal::rheology_hint`): one text, so the two never disagree.
-pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": a ball at 0.77 GPa and 5 m/s; the steady lines at 1-2 GPa there settled with Newton's method on the coupled problem, which point contacts, finite rollers and transient steps do not have yet), where the Carreau law with a limiting shear stress settled";
+pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle on the thermal fixed point alone in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": lines at 1-2 GPa, a ball at 0.77 GPa and 5 m/s); the steady ones settled with Newton's method on the coupled problem (thermal.coupled_newton, on by default), which transient steps do not have yet, and the Carreau law with a limiting shear stress settled in the same contacts";
 
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges

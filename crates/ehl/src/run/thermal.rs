@@ -109,14 +109,15 @@ pub fn loading_hint(case: &Case, converged: bool, termination: &str) -> Option<S
 /// What to add to the reason `termination` of a thermal run of `case` with the Eyring law that
 /// failed (None when it converged, was cancelled, has no `[thermal]` or another law): what the
 /// robustness scan of docs/thermal.md found of Eyring films at tau_0 = 5 MPa from 0.77 GPa on
-/// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): a ball at 0.77 GPa and 5 m/s did not
-/// settle (traced: its outer map expands, local contraction estimates 1.3-5, which no damping
-/// of the lagged factors settles; its neighbour at 1 m/s did not before 2026-12-02, stalled by Reynolds
-/// solves that left its pressure unmoved; on the lines, which did not either before 2026-12-01,
-/// a spike column's flux match had more than one root: docs/thermal.md, "The Eyring lines
-/// settle", "The pressure answers every step of the factors"), the steady lines
-/// at 1-2 GPa settle with Newton's method on the coupled problem, and the Carreau law with a
-/// limiting shear stress settled in the same contacts.
+/// ([`crate::reference::check::EYRING_THERMAL_LIMIT`]): on the fixed point alone a ball at
+/// 0.77 GPa and 5 m/s did not settle (traced: its outer map expands, local contraction
+/// estimates 1.3-5, which no damping of the lagged factors settles; its neighbour at 1 m/s did
+/// not before 2026-12-02, stalled by Reynolds solves that left its pressure unmoved; on the
+/// lines, which did not either before 2026-12-01, a spike column's flux match had more than one
+/// root: docs/thermal.md, "The Eyring lines settle", "The pressure answers every step of the
+/// factors"); the steady lines at 1-2 GPa and the ball settle with Newton's method on the
+/// coupled problem, and the Carreau law with a limiting shear stress settled in the same
+/// contacts.
 pub fn rheology_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     case.thermal.as_ref()?;
     let eyring = matches!(
@@ -138,7 +139,7 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
         mu,
         summary,
     );
-    if case.thermal.as_ref().is_some_and(|t| t.coupled_newton) && run.contact.grid().ny == 1 {
+    if case.thermal.as_ref().is_some_and(|t| t.coupled_newton) {
         summary.thermal_newton_steps = Some(run.result.coupled_newton_steps);
     }
     // a converged solution whose balance stays open: said (a failed one says why it failed)

@@ -919,6 +919,7 @@ impl ThermalContact {
                         len[j],
                         wet,
                         my,
+                        &self.film,
                         last.as_ref().map(|(r, t)| (*r, t.as_slice())),
                     );
                     let mut line = lines[at];
@@ -982,10 +983,11 @@ impl ThermalContact {
     }
 
     /// The side flow of row `j`'s film (cells `start..end`) from the y mass fluxes `my` (see
-    /// [`ThermalContact::side_mass_flux`]) and the film temperatures of the last iterate: face
+    /// [`ThermalContact::side_mass_flux`]) and the film temperatures `film`: face
     /// fluxes the mean of the two cells' where both have a film (`wet`) and a flux, else the
     /// cell's own (a flux with nothing beyond: the side leakage at a roller's end); the
-    /// temperature beyond a face the neighbour's, or the inlet's where it has no film.
+    /// temperature beyond a face the neighbour's in `film` (per row, nx * nz, i-major: the
+    /// last iterate), or the inlet's where it has no film.
     ///
     /// `fresh`: a neighbouring row solved since (its index and its film temperatures, nx * nz
     /// i-major over the whole row), taken in place of the last iterate's.
@@ -997,6 +999,7 @@ impl ThermalContact {
         end: usize,
         wet: &[bool],
         my: &[f64],
+        film: &[Vec<f64>],
         fresh: Option<(usize, &[f64])>,
     ) -> SideArrays {
         let (nx, ny, nz) = (self.grid.nx, self.grid.ny, self.nz());
@@ -1024,7 +1027,7 @@ impl ThermalContact {
                             0.5 * (own + my[kn * nz + z]),
                             match fresh {
                                 Some((row, t)) if row == kn / nx => t[(kn % nx) * nz + z],
-                                _ => self.film[kn / nx][(kn % nx) * nz + z],
+                                _ => film[kn / nx][(kn % nx) * nz + z],
                             },
                         ),
                         _ => (own, t0),
