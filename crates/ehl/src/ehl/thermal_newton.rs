@@ -41,9 +41,20 @@ const MAX_STEPS: usize = 12;
 const GMRES_RESTART: usize = 300;
 const GMRES_MAX_ITER: usize = 300;
 
+/// Most GMRES iterations per Newton step of a 2D contact (a ball, a finite roller), whose
+/// iterations each cost a film solve of every row (~0.1 s at 256 x 256): a step that needs
+/// more is far from Newton's regime, and the polish gives up (the fixed point goes on). The
+/// 2D polishes that reached a solution took 10-17 a step on average on the robustness scan's
+/// Eyring ball (49^2 to 97^2: 29 to 50 in 3 steps); the thesis pit's start, polished early in
+/// a trial, 161-215 a step on average for 204 s (docs/thermal.md, "The same for balls and
+/// finite rollers").
+const GMRES_MAX_ITER_2D: usize = 100;
+
 /// The restart is shortened so that GMRES's Krylov basis and preconditioned directions (two
-/// vectors an iteration) hold at most this many values (3.2e7: 256 MB): a finite contact of
-/// 256 x 256 cells has ~3.5e5 coupled unknowns, and 300 iterations' vectors would take 1.7 GB.
+/// vectors an iteration) hold about this many values (3.2e7: 256 MB; a little more at the
+/// floor of [`GMRES_MIN_RESTART`], reached above ~5e5 unknowns): a finite contact of
+/// 256 x 256 cells has 2e5 coupled unknowns in its pressure and surfaces and up to 3.3e5 more
+/// at the film's interior points (7 across), and 300 iterations' vectors would take 1-2.5 GB.
 /// Never below [`GMRES_MIN_RESTART`].
 const GMRES_MAX_VALUES: usize = 32_000_000;
 const GMRES_MIN_RESTART: usize = 30;
@@ -164,6 +175,11 @@ pub(super) fn polish(
     let n = sys.n();
     let m = contact.coupled_len(&frame);
     let big = n + 1 + m;
+    let max_iter = if contact.grid().ny > 1 {
+        GMRES_MAX_ITER_2D
+    } else {
+        GMRES_MAX_ITER
+    };
     let mut cp = Coupled {
         frame,
         ph,
@@ -290,7 +306,7 @@ pub(super) fn polish(
                 &rhs,
                 &mut u,
                 gmres_restart(big),
-                GMRES_MAX_ITER,
+                max_iter,
                 eta,
                 &mut matvec,
                 &mut precond,

@@ -162,8 +162,8 @@ pub struct ContactOptions {
     pub sweep_lines: usize,
     /// hold a grid line's film start against small moves downstream
     /// ([`INLET_FILM_HYSTERESIS`]); off by default (the results of a run are then those of
-    /// the rule alone), on once the steady driver has handed a line to Newton's method on the
-    /// coupled problem (`crate::ehl::thermal`)
+    /// the rule alone), on once the steady driver has handed the contact to Newton's method
+    /// on the coupled problem (`crate::ehl::thermal`)
     pub inlet_hysteresis: bool,
 }
 
