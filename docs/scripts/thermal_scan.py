@@ -1,6 +1,7 @@
 """A robustness scan of thermal runs beyond the examples (docs/thermal.md, "Robustness beyond
-the examples"): 23 line and ball cases of a steel pair under a mineral oil, Newtonian,
-Carreau and Eyring, at Hertz pressures of 0.5-2 GPa, 1-20 m/s and SRR -0.5 to 2. Each case
+the examples"): 24 line, ball and finite-roller cases of a steel pair under a mineral oil,
+Newtonian, Carreau and Eyring, at Hertz pressures of 0.5-2 GPa, 1-20 m/s and SRR -0.5 to 2
+(the finite roller, added 2026-12-02, at 1.7 GPa). Each case
 is run once with `ehl run`; the table (Markdown, on stdout) says whether it settled, in how
 many outer iterations, and its friction, central film and largest film temperature.
 
@@ -81,6 +82,25 @@ y_max = 2.5
 
 """ + COMMON)
 
+# the thesis ch. 2 rollers (R = 60 mm, L = 9.5 mm) at four times its load: p_h 1.7 GPa
+FINITE_ROLLER = ('title = "thermal scan: finite roller"\nkind = "ehl"\n\n'
+                 + body(1, 'shape = "roller"\nradius = 0.06\nlength = 9.5e-3\n')
+                 + body(2, 'shape = "roller"\nradius = 0.06\nlength = 9.5e-3\n')
+                 + """[load]
+force = 24000.0
+
+[motion]
+entrainment_speed = 5.0
+slide_to_roll = 0.5
+
+[grid]
+nx = 128
+ny = 64
+x_min = -4.0
+x_max = 1.5
+
+""" + COMMON)
+
 EYRING = 'lubricant.rheology={model="eyring",eyring_stress=5e6}'
 CARREAU = ('lubricant.rheology={model="carreau",shear_modulus=4.5e6,power_law_index=0.57,'
            'limiting_shear_coefficient=0.06}')
@@ -112,6 +132,8 @@ def cases():
     out.append(("ball, Carreau, SRR 1", BALL, ["motion.slide_to_roll=1.0", CARREAU]))
     out.append(("ellipse (R_y 50 mm), Eyring, SRR 0.5", BALL,
                 ["body1.radius_y=0.05", "motion.slide_to_roll=0.5", EYRING]))
+    out.append(("finite roller (L 9.5 mm, p_h 1.7 GPa), Eyring, SRR 0.5, 5 m/s", FINITE_ROLLER,
+                [EYRING]))
     return out
 
 
