@@ -347,8 +347,9 @@ pub struct ThermalSpec {
     /// independent
     pub side_flow: bool,
     /// `coupled_newton` (default true): a steady contact whose fixed point has not settled
-    /// after a few outer iterations (a line) or 20 (a ball, a finite roller) is handed to
-    /// Newton's method on the coupled problem
-    /// ([`crate::ehl::thermal::ThermalParams::coupled_newton`]); false: the fixed point alone
+    /// after a few outer iterations (a line) or 20 (a ball, a finite roller), and a transient
+    /// time step not settled after its passes, is handed to Newton's method on the coupled
+    /// problem ([`crate::ehl::thermal::ThermalParams::coupled_newton`]); false: the fixed
+    /// point alone
     pub coupled_newton: bool,
 }

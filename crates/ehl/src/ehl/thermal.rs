@@ -115,7 +115,8 @@ pub struct ThermalParams {
     /// (2026-12-01; 4 of them did not before). A ball or finite roller is handed over only
     /// from `POLISH_LATE` on when slow there (`PolishSchedule::due`); the robustness scan's
     /// Eyring ball at 5 m/s, unsettled after 80 outer iterations on the fixed point alone,
-    /// settles in 22 with it (2026-12-02).
+    /// settles in 22 with it (2026-12-02). A transient time step not settled after its
+    /// passes is handed over too (`super::transient`, `STEP_POLISH_CHECKS`).
     pub coupled_newton: bool,
 }
 
@@ -720,7 +721,7 @@ fn run(
 /// film's extent: from now on its start holds against small moves (see
 /// `crate::thermal::contact::INLET_FILM_HYSTERESIS`).
 #[allow(clippy::too_many_arguments)]
-fn polish_coupled(
+pub(super) fn polish_coupled(
     sys: &mut System,
     st: &mut State,
     contact: &mut ThermalContact,

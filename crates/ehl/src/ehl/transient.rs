@@ -43,7 +43,7 @@
 //!   (their solves O(n k log n) instead of O(n^2)).
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
-use super::thermal::{fields_si, relax_factors, solve_thermal, ThermalParams};
+use super::thermal::{fields_si, polish_coupled, relax_factors, solve_thermal, ThermalParams};
 use super::{
     better, line_band, solve_from, solve_steady_with_fallback_observed, EhlParams, EhlProblem,
     SolvedFields, Stats, Termination,
@@ -87,6 +87,17 @@ pub const THERMAL_SEED_TEMPERATURE: f64 = 0.2;
 /// within 1.7e-5, films 4.4e-5 (at SRR 1.0; the step's film test is 1e-4), film temperatures
 /// 2.3e-3 K, the same worst energy balance (0.14 % and 0.39 %).
 pub const THERMAL_STEP_TEMPERATURE: f64 = 0.1;
+
+/// A thermal time step that has not settled in `thermal.max_step_passes` passes is handed to
+/// Newton's method on the coupled problem of the step (`super::thermal_newton`: the Reynolds
+/// rows with their squeeze term, the film's energy rows with their time derivatives against
+/// the step's previous level, both surfaces; with `thermal.coupled_newton`, once a step), and
+/// this many more passes check its result by the step's own test (the first of them, with
+/// every flux-driven column on the root nearest the pressure's gradient, as the steady fixed
+/// point checks a polish). A 2D contact whose step polish fails is not polished again in the
+/// run: each of its GMRES iterations is a film solve of every row (~0.1 s at 256 x 256), and a
+/// failing polish runs to its limits. Steps that settle in their passes are untouched.
+const STEP_POLISH_CHECKS: usize = 3;
 
 /// Largest line (cells) whose time steps are preconditioned by a dense LU kept over the steps:
 /// 4096 cells hold 128 MiB in f64 while factoring, and a factorisation takes ~2 s (2049
@@ -471,6 +482,8 @@ fn run(
     let mut q1 = q(&st);
     let mut q2: Option<Vec<f64>> = None;
     let mut failed = Vec::new();
+    // a 2D contact whose step polish failed is not polished again (see STEP_POLISH_CHECKS)
+    let mut step_polish_off = false;
     // the features' cell averages at the last time levels (their own transport)
     let mut transport = params
         .feature_transport
@@ -547,6 +560,13 @@ fn run(
             let mut w = tp.relaxation;
             let mut failure = None;
             let mut h_prev = vec![f64::NAN; n];
+            // a step that has not settled in its passes is handed once to Newton's method on
+            // the coupled problem (see STEP_POLISH_CHECKS); its film start's hold is the
+            // polish's alone
+            let mut polished = false;
+            let mut max_passes = tp.max_step_passes;
+            let hysteresis = contact.options.inlet_hysteresis;
+            let mut check_polish = false;
             while end.converged {
                 passes += 1;
                 fields_si(&sys, &st, ph, hs, &mut p_si, &mut h_si);
@@ -565,6 +585,7 @@ fn run(
                 };
                 contact.options.line.tol = own.line.tol.max(fraction * tp.tolerance_k);
                 contact.options.surface_tol = own.surface_tol.max(fraction * tp.tolerance_k);
+                contact.options.line.nearest_root = std::mem::take(&mut check_polish);
                 let updated = contact.update(
                     &p_si,
                     &h_si,
@@ -587,7 +608,37 @@ fn run(
                 {
                     break;
                 }
-                if passes >= tp.max_step_passes {
+                if passes >= max_passes && tp.coupled_newton && !polished && !step_polish_off {
+                    polished = true;
+                    let saved = (st.clone(), sys.thermal.clone());
+                    let rp = polish_coupled(
+                        &mut sys,
+                        &mut st,
+                        contact,
+                        ph,
+                        hs,
+                        &params.newton,
+                        tp,
+                        &mut stats,
+                    );
+                    match rp {
+                        Ok(pol) => {
+                            // the next passes check it, as the steady fixed point does
+                            factors = pol.factors;
+                            end = pol.end;
+                            check_polish = true;
+                            max_passes = passes + STEP_POLISH_CHECKS;
+                            continue;
+                        }
+                        Err(_) => {
+                            st = saved.0;
+                            sys.thermal = saved.1;
+                            sys.eval(&mut st);
+                            step_polish_off = grid.ny > 1;
+                        }
+                    }
+                }
+                if passes >= max_passes {
                     failure = Some(super::Termination::ThermalNotSettled {
                         outer: passes,
                         change_k: change,
@@ -615,6 +666,7 @@ fn run(
                     &mut stats,
                 );
             }
+            contact.options.inlet_hysteresis = hysteresis;
             if let Some(f) = failure {
                 end.converged = false;
                 end.reason = f;

@@ -108,13 +108,15 @@ pub struct ThermalCheck {
 /// 2D contacts (2026-12-02).
 pub const EYRING_NOTE_PRESSURE: f64 = 0.75e9;
 
-/// A thermal case with the Eyring law whose solution rests on the thermal fixed point alone:
-/// `thermal.coupled_newton = false`, or a transient run (its time steps are the fixed point's;
-/// only a steady start is polished). A steady contact hands a fixed point that does not settle
-/// to Newton's method on the coupled problem
+/// A thermal case with the Eyring law whose solution rests on the thermal fixed point alone,
+/// or mostly: `thermal.coupled_newton = false`, or a transient run (its time steps are the
+/// fixed point's, a step handed to Newton's method only once it has failed to settle in its
+/// passes: on the groove line at 2 GPa and SRR 1 with the scan's Eyring oil, 256 cells, 3 of
+/// the 5 unsettled steps were settled so, 2 not; `crate::ehl::transient`). A steady contact
+/// hands a fixed point that does not settle to Newton's method on the coupled problem
 /// (`crate::ehl::thermal::ThermalParams::coupled_newton`), with which the Eyring lines of the
-/// robustness scan all settled (2026-12-01), and its balls too since 2D contacts have it
-/// (2026-12-02).
+/// robustness scan all settled (2026-12-01), and its balls and finite roller too since 2D
+/// contacts have it (2026-12-02).
 pub fn eyring_without_newton(case: &Case) -> bool {
     let eyring = case
         .lubricant
@@ -128,7 +130,7 @@ pub fn eyring_without_newton(case: &Case) -> bool {
 /// What is known of thermal runs with the Eyring law at high pressure, said by `ehl check`
 /// (above [`EYRING_NOTE_PRESSURE`], where [`eyring_without_newton`]) and by a failed run's
 /// reason (`crate::run::thermal::rheology_hint`): one text, so the two never disagree.
-pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle on the thermal fixed point alone in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": lines at 1-2 GPa, a ball at 0.77 GPa and 5 m/s); the steady ones settled with Newton's method on the coupled problem (thermal.coupled_newton, on by default), which transient steps do not have yet, and the Carreau law with a limiting shear stress settled in the same contacts";
+pub const EYRING_THERMAL_LIMIT: &str = "thermal runs with the Eyring law did not settle on the thermal fixed point alone in some cases measured at Hertz pressures of 0.77 GPa and above (tau_0 = 5 MPa, docs/thermal.md, \"Robustness beyond the examples\": lines at 1-2 GPa, a ball at 0.77 GPa and 5 m/s); the steady ones settled with Newton's method on the coupled problem (thermal.coupled_newton, on by default), which a transient step gets only once it has failed to settle (a groove line at 2 GPa and SRR 1 kept 2 unsettled steps of 200), and the Carreau law with a limiting shear stress settled in the same contacts";
 
 /// `ehl check` notes a transient case whose `features[0]` advances more than this many cells a
 /// step: a vertical-walled pit's wall pressures depend on the step (docs/pits.md, "Sharp edges

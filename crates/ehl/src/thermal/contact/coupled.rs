@@ -61,12 +61,10 @@ pub(crate) struct CoupledFrame {
 }
 
 impl ThermalContact {
-    /// The frame of the coupled residual at the last update: `Some` for a steady contact whose
-    /// film was solved, else `None`.
+    /// The frame of the coupled residual at the last update: `Some` for a contact whose film
+    /// was solved (steady, or a time step in progress: the film's time derivatives against
+    /// the step's previous level, [`ThermalContact::begin_step`]), else `None`.
     pub(crate) fn coupled_frame(&self) -> Option<CoupledFrame> {
-        if self.step.is_some() {
-            return None;
-        }
         let nz = self.nz();
         let rows: Vec<RowFrame> = self
             .lines
@@ -199,9 +197,9 @@ impl ThermalContact {
     }
 
     /// Row `r`'s film line of the fields `c`: the columns take the pressure gradient as given;
-    /// no side flow yet.
-    fn coupled_line<'a>(&self, r: &RowFrame, c: &'a CoupledFields) -> Line<'a> {
-        let nx = self.grid.nx;
+    /// no side flow yet; in a time step, the film's previous level.
+    fn coupled_line<'a>(&'a self, r: &RowFrame, c: &'a CoupledFields) -> Line<'a> {
+        let (nx, nz) = (self.grid.nx, self.nz());
         let cells = r.j * nx + r.start..r.j * nx + r.end;
         Line {
             dx: self.grid.dx,
@@ -215,7 +213,14 @@ impl ThermalContact {
             t2: &c.s2[cells],
             t_in: self.t0(),
             poiseuille_flux_x: None,
-            transient: None,
+            transient: self.step.as_ref().map(|s| {
+                let at = r.start * nz..r.end * nz;
+                LineTransient {
+                    inv_dt: s.inv_dt,
+                    t_old: &s.t_old[r.j][at.clone()],
+                    rho_h_old: &s.rho_h_old[r.j][at],
+                }
+            }),
             side: None,
         }
     }
