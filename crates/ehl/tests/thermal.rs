@@ -1316,8 +1316,8 @@ fn a_fast_sliding_ball_settles_with_either_oil() {
 /// another machine's rounding).
 #[test]
 fn an_eyring_ball_is_not_stalled_by_a_pressure_that_does_not_move() {
-    let text = format!("{SCAN_BALL}{SCAN_OIL}{OIL}");
-    let s = solve(&parse_str(&text, "scan_ball.toml", &[]).unwrap());
+    let text = SCAN_BALL_CASE;
+    let s = solve(&parse_str(text, "scan_ball.toml", &[]).unwrap());
     let err = settled(&s, "Eyring ball, SRR 0.5");
     let outer = s.summary.thermal_iterations.unwrap();
     println!(
@@ -1328,39 +1328,9 @@ fn an_eyring_ball_is_not_stalled_by_a_pressure_that_does_not_move() {
     assert!(outer <= 20, "{outer} outer iterations");
 }
 
-/// The robustness scan's ball at 1 m/s and SRR 0.5 (see the test above), 49^2 cells; the
-/// oil is `SCAN_OIL`'s Eyring oil.
-const SCAN_BALL: &str = r#"
-title = "thermal scan: ball"
-kind = "ehl"
-
-[body1]
-shape = "ball"
-radius = 0.0127
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[body2]
-shape = "flat"
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[load]
-force = 30.0
-
-[motion]
-entrainment_speed = 1.0
-slide_to_roll = 0.5
-
-[grid]
-nx = 49
-ny = 49
-x_min = -3.5
-x_max = 1.5
-y_min = -2.5
-y_max = 2.5
-
-"#;
+/// The robustness scan's ball at 1 m/s and SRR 0.5 (see the test above), 49^2 cells, with
+/// `SCAN_OIL`'s Eyring oil and `OIL`'s thermal table.
+const SCAN_BALL_CASE: &str = include_str!("data/thermal_scan_ball.toml");
 
 /// The scan's Eyring ball at 5 m/s (p_h 0.77 GPa, SRR 0.5, tau_0 = 5 MPa; docs/thermal.md,
 /// "Robustness beyond the examples"): on the fixed point alone its outer map expands
@@ -1380,7 +1350,7 @@ y_max = 2.5
 /// as beta / ln(2 eta u_s / (tau_0 h)), ~6e-3 per K here, over 0.1 K). ~8 s.
 #[test]
 fn an_eyring_ball_whose_fixed_point_expands_settles_with_newton() {
-    let text = format!("{SCAN_BALL}{SCAN_OIL}{OIL}");
+    let text = SCAN_BALL_CASE;
     let run = |newton: bool| {
         let sets = [
             "grid.nx=65".to_string(),
@@ -1388,7 +1358,7 @@ fn an_eyring_ball_whose_fixed_point_expands_settles_with_newton() {
             "motion.entrainment_speed=5.0".to_string(),
             format!("thermal.coupled_newton={newton}"),
         ];
-        solve(&parse_str(&text, "scan_ball.toml", &sets).unwrap())
+        solve(&parse_str(text, "scan_ball.toml", &sets).unwrap())
     };
     let (a, b) = (run(true), run(false));
     settled(&a, "Eyring ball at 5 m/s, polished");

@@ -106,8 +106,8 @@ pub struct ThermalParams {
     /// `POLISH_INNER_RESIDUAL_K`; from `POLISH_LATE` on at any factors' residual), is handed
     /// to Newton's method on the coupled problem of pressure, film and surface temperatures
     /// (`super::thermal_newton`); the fixed point's own stop then judges the result, with an
-    /// update whose columns keep
-    /// the root of their flux match nearest the pressure's gradient. On the Table 3.7 line's
+    /// update whose columns keep the root of their flux match nearest the pressure's
+    /// gradient. On the Table 3.7 line's
     /// thermal map (docs/thermal.md) 19 of 20 runs settled instead of 15 when it came, in 483
     /// outer iterations instead of 909 (501 since capped columns carry their flux with the
     /// capped profile), in 10-15 % more time; 18 since the compression's capped gradient
@@ -715,11 +715,12 @@ fn run(
     }
 }
 
-/// Newton's method on the coupled problem of a steady contact (`super::thermal_newton::polish`)
-/// from the state `st` of `sys`, the Reynolds rows to the case's tolerance and the temperature
-/// rows to [`POLISH_TOLERANCE`] of [`ThermalParams::tolerance_k`]. The polish freezes the
-/// film's extent: from now on its start holds against small moves (see
-/// `crate::thermal::contact::INLET_FILM_HYSTERESIS`).
+/// Newton's method on the coupled problem of a contact, steady or in a time step
+/// (`super::thermal_newton::polish`), from the state `st` of `sys`, the Reynolds rows to the
+/// case's tolerance and the temperature rows to [`POLISH_TOLERANCE`] of
+/// [`ThermalParams::tolerance_k`]. The polish freezes the film's extent: from now on its start
+/// holds against small moves (see `crate::thermal::contact::INLET_FILM_HYSTERESIS`; a
+/// transient step restores the hold it had at its end).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn polish_coupled(
     sys: &mut System,
@@ -1200,6 +1201,15 @@ mod tests {
         assert_eq!(film_contraction(&[]), None);
     }
 
+    /// A far fixed point that wanders (factors' residual ~1, as an Eyring line's at 1 GPa or
+    /// the Eyring ball's at 5 m/s) is not polished before POLISH_LATE, and is from it on.
+    fn wandering_is_polished_from_late(s: &PolishSchedule, finite: bool) {
+        let (tol, inner, max) = (1e-4, 0.1, 80);
+        let wandering: Vec<f64> = (0..max).map(|k| 1.0 + 0.5 * (k as f64).sin()).collect();
+        let due = |o: usize| s.due(o, max, &wandering[..o], tol, inner, finite);
+        assert!(!due(POLISH_LATE - 1) && due(POLISH_LATE), "finite {finite}");
+    }
+
     /// The guard POLISH_RUN: a line whose polishes keep reaching solutions that the fixed point
     /// does not then find settled is polished POLISH_RUN times in a row and then left to the
     /// fixed point for the rest of the run; a failed polish starts the count again, after
@@ -1256,23 +1266,7 @@ mod tests {
         );
         // a far fixed point that wanders (factors' residual ~1, as an Eyring line's at 1 GPa):
         // not before POLISH_LATE, from it on
-        let wandering: Vec<f64> = (0..max).map(|k| 1.0 + 0.5 * (k as f64).sin()).collect();
-        assert!(!s.due(
-            POLISH_LATE - 1,
-            max,
-            &wandering[..POLISH_LATE - 1],
-            tol,
-            inner,
-            false
-        ));
-        assert!(s.due(
-            POLISH_LATE,
-            max,
-            &wandering[..POLISH_LATE],
-            tol,
-            inner,
-            false
-        ));
+        wandering_is_polished_from_late(&s, false);
         // but not one that is far and contracts fast (0.3 an iteration: 7 more to its stop)
         let closing: Vec<f64> = (0..POLISH_LATE)
             .map(|k| 0.5 * 0.3f64.powi(k as i32 + 1 - POLISH_LATE as i32))
@@ -1344,23 +1338,7 @@ mod tests {
         assert!(s.due(POLISH_LATE, max, &fast, tol, inner, false));
         assert!(!s.due(POLISH_LATE, max, &fast, tol, inner, true));
         // far and wandering (an Eyring ball at 5 m/s): from POLISH_LATE on
-        let wandering: Vec<f64> = (0..max).map(|k| 1.0 + 0.5 * (k as f64).sin()).collect();
-        assert!(!s.due(
-            POLISH_LATE - 1,
-            max,
-            &wandering[..POLISH_LATE - 1],
-            tol,
-            inner,
-            true
-        ));
-        assert!(s.due(
-            POLISH_LATE,
-            max,
-            &wandering[..POLISH_LATE],
-            tol,
-            inner,
-            true
-        ));
+        wandering_is_polished_from_late(&s, true);
         // again after a polish that reached a solution, however fast
         let mut s = PolishSchedule::new();
         s.reached(POLISH_LATE);

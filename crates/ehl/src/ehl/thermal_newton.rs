@@ -1,6 +1,7 @@
-//! Newton's method on the coupled steady thermal problem of a contact, a line or a 2D one (a
-//! ball, a finite roller): the pressure, h0, the film temperature across z and both surface
-//! temperatures solved as one system, as
+//! Newton's method on the coupled thermal problem of a contact, a line or a 2D one (a ball, a
+//! finite roller), steady or one time step of a transient run (the Reynolds rows with their
+//! squeeze term, the film rows with their time derivatives): the pressure, h0, the film
+//! temperature across z and both surface temperatures solved as one system, as
 //! Habchi et al. (Tribol. Lett. 30 (2008) 41) solve thermal EHL, here Jacobian-free
 //! (Knoll & Keyes, J. Comput. Phys. 193 (2004) 357).
 //!
@@ -171,7 +172,7 @@ pub(super) fn polish(
 ) -> Result<Polished, String> {
     let frame = contact
         .coupled_frame()
-        .ok_or("not a steady contact with a solved film")?;
+        .ok_or("not a contact with a solved film")?;
     let n = sys.n();
     let m = contact.coupled_len(&frame);
     let big = n + 1 + m;

@@ -1,5 +1,6 @@
-//! The temperature rows of the coupled steady thermal problem: the film's energy equation and
-//! both surfaces' moving-heat-source relation as residuals of the film and surface
+//! The temperature rows of the coupled thermal problem (steady, or one time step): the film's
+//! energy equation (in a time step with its time derivatives against the step's previous
+//! level) and both surfaces' moving-heat-source relation as residuals of the film and surface
 //! temperatures at a given pressure and film, for the Newton method that solves pressure and
 //! temperature together (`crate::ehl::thermal_newton`). A line contact has one grid line; a
 //! finite contact (a ball, a finite roller) has a film line per grid row, coupled along y by
@@ -394,49 +395,13 @@ mod tests {
     use crate::case::parse_str;
     use crate::run::thermal::contact_for;
 
-    /// A steel ball on a steel flat at 1 m/s and SRR 0.1 under a Newtonian Roelands oil, the
-    /// thermal table of the robustness scan (docs/thermal.md).
-    const BALL: &str = r#"
-title = "coupled residual"
-kind = "ehl"
-
-[body1]
-shape = "ball"
-radius = 0.0127
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[body2]
-shape = "flat"
-youngs_modulus = 206e9
-poisson_ratio = 0.3
-
-[load]
-force = 30.0
-
-[motion]
-entrainment_speed = 1.0
-slide_to_roll = 0.1
-
-[grid]
-nx = 32
-ny = 24
-
-[lubricant]
-viscosity = 0.05
-pressure_viscosity_coefficient = 2.0e-8
-density = 870.0
-viscosity_model = "roelands"
-density_model = "dowson-higginson"
-
-[thermal]
-inlet_temperature = 313.0
-viscosity_temperature = 1.1
-thermal_expansion = 6.5e-4
-conductivity = 0.14
-heat_capacity = 2000.0
-points_across_film = 7
-"#;
+    /// The robustness scan's steel ball on a steel flat (docs/thermal.md), here at 1 m/s and
+    /// SRR 0.1 under its oil made Newtonian.
+    const BALL: &str = include_str!("../../../tests/data/thermal_scan_ball.toml");
+    const BALL_SETS: [&str; 2] = [
+        "motion.slide_to_roll=0.1",
+        "lubricant.rheology=\"newtonian\"",
+    ];
 
     /// The coupled residual of a finite contact has the same root as the update's film-body
     /// iteration, which sweeps the rows along y (each taking the row solved just before it)
@@ -455,7 +420,8 @@ points_across_film = 7
     /// the side flow.
     #[test]
     fn the_coupled_residual_vanishes_on_a_settled_finite_film() {
-        let case = parse_str(BALL, "ball.toml", &[]).unwrap();
+        let sets = BALL_SETS.map(String::from);
+        let case = parse_str(BALL, "thermal_scan_ball.toml", &sets).unwrap();
         let (a, hc, ph, r) = (2.0e-4, 5.0e-7, 0.3e9, 0.0127);
         let grid = crate::grid::Grid::new(32, 24, -2.0 * a, 1.2 * a, -1.2 * a, 1.2 * a);
         let mut contact = contact_for(&case, grid).unwrap();
