@@ -467,25 +467,7 @@ impl ThermalContact {
         let (nx, ny, n) = (g.nx, g.ny, g.len());
         let nz = self.nz();
         let t0 = self.t0();
-        // fields on the cells; cells without material take the row's thickest film at ambient
-        // pressure (their temperatures are not used)
-        let mut hh = vec![0.0; n];
-        let mut pp = vec![0.0; n];
-        for j in 0..ny {
-            let row = j * nx..(j + 1) * nx;
-            let thick = row
-                .clone()
-                .filter(|&k| active[k] && h[k].is_finite())
-                .map(|k| h[k])
-                .fold(0.0f64, f64::max)
-                .max(1e-6);
-            for k in row {
-                let ok = active[k] && h[k].is_finite();
-                // a film that closed (h <= 0) is held at 1 nm: the column needs h > 0
-                hh[k] = if ok { h[k].max(1e-9) } else { thick };
-                pp[k] = if ok { p[k].max(0.0) } else { 0.0 };
-            }
-        }
+        let (hh, pp) = film_fields(&g, p, h, active);
         let (dpdx, dpdy) = gradients(&g, &pp);
         // each row's film ends one cell past its last pressurised cell: downstream the film is
         // cavitated (ruptured into streamers, which the Reynolds solution does not fill), and a
@@ -972,12 +954,8 @@ impl ThermalContact {
         let mut my = vec![f64::NAN; self.grid.len() * nz];
         for (j, s) in lines.iter().enumerate() {
             let Some(s) = s else { continue };
-            for (i, pr) in s.profiles.iter().enumerate() {
-                let k = j * nx + start[j] + i;
-                for z in 0..nz {
-                    my[k * nz + z] = h[k] * s.coefficients.density[i * nz + z] * pr.v[z];
-                }
-            }
+            let row = j * nx + start[j];
+            row_side_mass_flux(&mut my, nz, row, h, &s.coefficients.density, &s.profiles);
         }
         my
     }
@@ -1340,6 +1318,50 @@ impl ThermalContact {
             }
         }
         f * g.cell_area()
+    }
+}
+
+/// The film h (m) and pressure p (Pa) the temperature model takes on each cell: where the
+/// cell has material (`active` and a finite film) its own, a film that closed (h <= 0) held
+/// at 1 nm (a column needs h > 0) and a negative pressure at 0; elsewhere the row's thickest
+/// film at ambient pressure (those cells' temperatures are not used).
+fn film_fields(g: &Grid, p: &[f64], h: &[f64], active: &[bool]) -> (Vec<f64>, Vec<f64>) {
+    let (nx, n) = (g.nx, g.len());
+    let mut hh = vec![0.0; n];
+    let mut pp = vec![0.0; n];
+    for j in 0..g.ny {
+        let row = j * nx..(j + 1) * nx;
+        let thick = row
+            .clone()
+            .filter(|&k| active[k] && h[k].is_finite())
+            .map(|k| h[k])
+            .fold(0.0f64, f64::max)
+            .max(1e-6);
+        for k in row {
+            let ok = active[k] && h[k].is_finite();
+            hh[k] = if ok { h[k].max(1e-9) } else { thick };
+            pp[k] = if ok { p[k].max(0.0) } else { 0.0 };
+        }
+    }
+    (hh, pp)
+}
+
+/// The y mass flux per unit zeta, h rho v (kg/(m s)), of one row's film into `my` (nz values
+/// per cell, cell-major): its first cell `first` (a grid index), films `h` per grid cell, the
+/// density at its points (cells * nz) and its velocity profiles.
+fn row_side_mass_flux(
+    my: &mut [f64],
+    nz: usize,
+    first: usize,
+    h: &[f64],
+    density: &[f64],
+    profiles: &[FilmProfile],
+) {
+    for (i, pr) in profiles.iter().enumerate() {
+        let k = first + i;
+        for z in 0..nz {
+            my[k * nz + z] = h[k] * density[i * nz + z] * pr.v[z];
+        }
     }
 }
 

@@ -151,22 +151,7 @@ impl ThermalContact {
         let g = self.grid;
         let (nx, nz, n) = (g.nx, self.nz(), g.len());
         let ok: Vec<bool> = (0..n).map(|k| active[k] && h[k].is_finite()).collect();
-        let mut hh = vec![0.0; n];
-        let mut pp = vec![0.0; n];
-        for j in 0..g.ny {
-            let row = j * nx..(j + 1) * nx;
-            // cells without material take the row's thickest film at ambient pressure
-            let thick = row
-                .clone()
-                .filter(|&k| ok[k])
-                .map(|k| h[k])
-                .fold(0.0f64, f64::max)
-                .max(1e-6);
-            for k in row {
-                hh[k] = if ok[k] { h[k].max(1e-9) } else { thick };
-                pp[k] = if ok[k] { p[k].max(0.0) } else { 0.0 };
-            }
-        }
+        let (hh, pp) = film_fields(&g, p, h, active);
         let (dpdx, dpdy) = gradients(&g, &pp);
         let m = self.coupled_len(f) - 2 * n;
         let (s1, s2) = (x[m..m + n].to_vec(), x[m + n..m + 2 * n].to_vec());
@@ -289,12 +274,8 @@ impl ThermalContact {
         let side = (self.options.side_flow && g.ny > 1).then(|| {
             let mut my = vec![f64::NAN; n * nz];
             for (row, (coef, profiles)) in f.rows.iter().zip(&coefs) {
-                for (i, pr) in profiles.iter().enumerate() {
-                    let k = row.j * nx + row.start + i;
-                    for z in 0..nz {
-                        my[k * nz + z] = c.hh[k] * coef.density[i * nz + z] * pr.v[z];
-                    }
-                }
+                let first = row.j * nx + row.start;
+                row_side_mass_flux(&mut my, nz, first, &c.hh, &coef.density, profiles);
             }
             let mut film = self.film.clone();
             for (row, t) in f.rows.iter().zip(&c.t) {
