@@ -660,7 +660,15 @@ impl ThermalContact {
                     softening[k] = 0.25 * beta * gen;
                 }
             }
-            let change = self.update_surfaces(&q, &response, &softening, &mut rise);
+            // the range the surfaces may take (see update_surfaces): the film's iterate (its
+            // surface points included), the surfaces before this update and the inlet's
+            let range = sols
+                .iter()
+                .flatten()
+                .flat_map(|s| s.t.iter())
+                .chain(self.surface.iter().flatten())
+                .fold((t0, t0), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            let change = self.update_surfaces(&q, &response, &softening, range, &mut rise);
             for (j, s) in sols.iter().enumerate() {
                 if let Some(s) = s {
                     let at = start[j] * nz;
@@ -771,11 +779,27 @@ impl ThermalContact {
     /// oscillated (beta 0.052 1/K: the heat falls by up to 5 % a kelvin) and failed. Where
     /// G R is small (a fast body, a thick film) d is the plain update, in one or two
     /// iterations.
+    ///
+    /// The new surface temperatures are kept within `range` (K): the lowest and highest of the
+    /// film's iterate (its surface points included), of the surfaces before the update and of
+    /// the inlet temperature. The bodies are heated and cooled only through the film and enter
+    /// at the inlet temperature, so at a solution their surfaces lie in that range (the
+    /// maximum principle of their conduction): the bound holds no solution back, and in a
+    /// transient step the surfaces' own last temperatures keep what earlier steps stored. It
+    /// bounds the linearisation's steps far from a solution, where the heating is many
+    /// orders above its solution's: the isothermal pressure of a Newtonian line at 1.5 GPa and
+    /// SRR 0.5 heats its surfaces by 6e12 W/m^2 at the first update (the viscosity's fall over
+    /// the hundreds of kelvins that would bring is far from linear), and the linear step took
+    /// one surface 128 K below the inlet and the other up; the next film solve, between a
+    /// 185 K wall and the 1.5 GPa pressure, overflowed the viscosity law, and the run failed
+    /// (lines at 1.5-3 GPa with SRR 0.1-1 and the thesis ch. 2 finite rollers at 1.7 GPa
+    /// with SRR 0.5 and 1 did so; with the bound they settle in 13-21 outer iterations).
     fn update_surfaces(
         &mut self,
         q: &[Vec<f64>; 2],
         response: &[[f64; 4]],
         softening: &[f64],
+        range: (f64, f64),
         rise: &mut [f64],
     ) -> f64 {
         let n = self.grid.len();
@@ -827,8 +851,9 @@ impl ThermalContact {
         let mut change = 0.0f64;
         for (body, surface) in self.surface.iter_mut().enumerate() {
             for (k, s) in surface.iter_mut().enumerate() {
-                *s += d[body * n + k];
-                change = change.max(d[body * n + k].abs());
+                let new = (*s + d[body * n + k]).clamp(range.0, range.1);
+                change = change.max((new - *s).abs());
+                *s = new;
             }
         }
         change
