@@ -1,7 +1,8 @@
 """A robustness scan of thermal runs beyond the examples (docs/thermal.md, "Robustness beyond
-the examples"): 24 line, ball and finite-roller cases of a steel pair under a mineral oil,
-Newtonian, Carreau and Eyring, at Hertz pressures of 0.5-2 GPa, 1-20 m/s and SRR -0.5 to 2
-(the finite roller, added 2026-12-02, at 1.7 GPa). Each case
+the examples"): 27 line, ball and finite-roller cases of a steel pair under a mineral oil,
+Newtonian, Carreau and Eyring, at Hertz pressures of 0.5-3 GPa, 1-20 m/s and SRR -0.5 to 2
+(the finite roller, added 2026-12-02, at 1.7 GPa; two Newtonian lines at 2 and 3 GPa and a
+Newtonian finite roller added 2026-12-05). Each case
 is run once with `ehl run`; the table (Markdown, on stdout) says whether it settled, in how
 many outer iterations, and its friction, central film and largest film temperature.
 
@@ -114,6 +115,10 @@ def cases():
         out.append((f"line, Eyring, SRR {srr}", LINE, [f"motion.slide_to_roll={srr}", EYRING]))
     for srr in [0.5, -0.5]:
         out.append((f"line, Carreau, SRR {srr}", LINE, [f"motion.slide_to_roll={srr}", CARREAU]))
+    # (added 2026-12-05: before the surfaces' update was bounded, these failed)
+    for ph, srr in [(2.0, 0.5), (3.0, 1.0)]:
+        out.append((f"line, Newtonian, SRR {srr}, p_h {ph} GPa", LINE,
+                    [f"load.max_hertz_pressure={ph}e9", f"motion.slide_to_roll={srr}"]))
     for ph in [0.5, 2.0]:
         out.append((f"line, Eyring, SRR 0.5, p_h {ph} GPa", LINE,
                     [f"load.max_hertz_pressure={ph}e9", "motion.slide_to_roll=0.5", EYRING]))
@@ -134,6 +139,8 @@ def cases():
                 ["body1.radius_y=0.05", "motion.slide_to_roll=0.5", EYRING]))
     out.append(("finite roller (L 9.5 mm, p_h 1.7 GPa), Eyring, SRR 0.5, 5 m/s", FINITE_ROLLER,
                 [EYRING]))
+    out.append(("finite roller (L 9.5 mm, p_h 1.7 GPa), Newtonian, SRR 1, 5 m/s", FINITE_ROLLER,
+                ["motion.slide_to_roll=1.0"]))
     return out
 
 
