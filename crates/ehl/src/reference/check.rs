@@ -97,7 +97,20 @@ pub struct ThermalCheck {
     /// ([`eyring_without_newton`]; `ehl check` notes it at a Hertz pressure of at least
     /// [`EYRING_NOTE_PRESSURE`])
     pub eyring: bool,
+    /// the lubricant is Newtonian and the surfaces slide (SRR not 0): such a film's friction
+    /// comes from the cold core of the Hertz zone (`ehl check` notes its points across the
+    /// film from [`NEWTONIAN_POINTS_NOTE_PRESSURE`] on)
+    pub newtonian_sliding: bool,
 }
+
+/// `ehl check` notes a thermal case with a Newtonian oil sliding from this Hertz pressure (Pa) on
+/// when it has fewer than 11 points across the film: at high pressure the Newtonian friction
+/// comes from the cold, highly viscous core of the Hertz zone, where the viscosity falls by
+/// ~10 % a kelvin, and its cross-film profile needs more points. Measured (docs/thermal.md,
+/// "Newtonian oils at 1.5-3 GPa"): on the robustness scan's line at 2 GPa and SRR 0.1 the
+/// friction with 7, 9, 11 and 15 points was 0.0953, 0.0969, 0.09738 and 0.09752 (7 points 2.2 %
+/// off 11); at 1 GPa 7 points were 0.5 % off.
+pub const NEWTONIAN_POINTS_NOTE_PRESSURE: f64 = 1.5e9;
 
 /// `ehl check` notes a thermal case with the Eyring law from this Hertz pressure (Pa) on where
 /// the contact has the thermal fixed point alone ([`eyring_without_newton`]): in the robustness
@@ -361,6 +374,11 @@ pub fn check_report(case: &Case) -> CheckReport {
             loading: l,
             points_across_film: tl.points_across_film,
             eyring: eyring_without_newton(case),
+            newtonian_sliding: srr != 0.0
+                && case
+                    .lubricant
+                    .as_ref()
+                    .is_some_and(|l| matches!(l.rheology, crate::lubricant::Rheology::Newtonian)),
             murch_wilson: super::thermal::murch_wilson(l),
             gupta: super::thermal::gupta(l, srr, report.hertz.ph / report.hertz.e_red),
             peclet: [
@@ -655,6 +673,16 @@ impl fmt::Display for CheckReport {
             if t.eyring && self.hertz.ph >= EYRING_NOTE_PRESSURE {
                 writeln!(f, "  note: {EYRING_THERMAL_LIMIT}")?;
             }
+            if t.newtonian_sliding
+                && self.hertz.ph >= NEWTONIAN_POINTS_NOTE_PRESSURE
+                && t.points_across_film < 11
+            {
+                writeln!(
+                    f,
+                    "  note: a Newtonian oil sliding at this pressure takes its friction from the cold core of the Hertz zone, whose viscosity falls by ~10 % a kelvin: with {} points across the film the friction is less accurate (7 points were 2.2 % off 11 at 2 GPa and SRR 0.1, docs/thermal.md, \"Newtonian oils at 1.5-3 GPa\"): thermal.points_across_film = 11 for accuracy",
+                    t.points_across_film
+                )?;
+            }
             if t.loading > crate::ehl::thermal::CONVERGED_THERMAL_LOADING {
                 writeln!(
                     f,
@@ -764,6 +792,35 @@ mod tests {
         let fine = groove(want);
         assert!(fine.transient.unwrap().cells_per_step.0 <= 1.0 + 1e-12);
         assert!(!fine.to_string().contains("note: features[0] moves"));
+    }
+
+    /// A thermal Newtonian oil sliding at 2 GPa with 7 points across the film gets the note on
+    /// its points; not with 11 points, in pure rolling, at 1 GPa or with a Carreau oil.
+    #[test]
+    fn a_newtonian_oil_sliding_at_high_pressure_is_noted_for_its_points_across_the_film() {
+        let thermal = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/ehl_thermal_line.toml"
+        ))
+        .unwrap();
+        let noted = |sets: &[&str]| {
+            let mut all = vec![
+                "lubricant.rheology={model=\"newtonian\"}".to_string(),
+                "load.dimensionless_load=5.2e-4".to_string(), // p_h 2.0 GPa
+            ];
+            all.extend(sets.iter().map(|s| s.to_string()));
+            let case = crate::case::parse_str(&thermal, "t.toml", &all).unwrap();
+            check_report(&case)
+                .to_string()
+                .contains("note: a Newtonian oil sliding")
+        };
+        assert!(noted(&[]));
+        assert!(!noted(&["thermal.points_across_film=11"]));
+        assert!(!noted(&["motion.slide_to_roll=0"]));
+        assert!(!noted(&["load.dimensionless_load=1.3e-4"])); // 1.0 GPa
+        assert!(!noted(&[
+            "lubricant.rheology={model=\"carreau\",shear_modulus=4.5e6,power_law_index=0.57}"
+        ]));
     }
 
     /// A circular contact gets the full-regime fit (Nijenbanning et al.) beside Hamrock-Dowson:
