@@ -106,9 +106,10 @@ pub struct ThermalCheck {
 /// `ehl check` notes a thermal case with a Newtonian oil sliding from this Hertz pressure (Pa) on
 /// when it has fewer than 11 points across the film: at high pressure the Newtonian friction
 /// comes from the cold, highly viscous core of the Hertz zone, where the viscosity falls by
-/// ~10 % a kelvin, and its cross-film profile needs more points. Measured (docs/thermal.md,
+/// 5-7 % a kelvin (Roelands' beta at 2 GPa and 400-460 K), and its cross-film profile needs
+/// more points. Measured (docs/thermal.md,
 /// "Newtonian oils at 1.5-3 GPa"): on the robustness scan's line at 2 GPa and SRR 0.1 the
-/// friction with 7, 9, 11 and 15 points was 0.0953, 0.0969, 0.09738 and 0.09752 (7 points 2.2 %
+/// friction with 7, 9, 11 and 15 points was 0.0953, 0.0969, 0.09738 and 0.09752 (7 points 2.1 %
 /// off 11); at 1 GPa 7 points were 0.5 % off.
 pub const NEWTONIAN_POINTS_NOTE_PRESSURE: f64 = 1.5e9;
 
@@ -679,7 +680,7 @@ impl fmt::Display for CheckReport {
             {
                 writeln!(
                     f,
-                    "  note: a Newtonian oil sliding at this pressure takes its friction from the cold core of the Hertz zone, whose viscosity falls by ~10 % a kelvin: with {} points across the film the friction is less accurate (7 points were 2.2 % off 11 at 2 GPa and SRR 0.1, docs/thermal.md, \"Newtonian oils at 1.5-3 GPa\"): thermal.points_across_film = 11 for accuracy",
+                    "  note: a Newtonian oil sliding at this pressure takes its friction from the cold core of the Hertz zone, whose viscosity falls by 5-7 % a kelvin there: with {} points across the film the friction is less accurate (7 points were 2.1 % off 11 at 2 GPa and SRR 0.1, docs/thermal.md, \"Newtonian oils at 1.5-3 GPa\"): thermal.points_across_film = 11 for accuracy",
                     t.points_across_film
                 )?;
             }

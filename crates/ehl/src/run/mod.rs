@@ -767,12 +767,14 @@ fn inlet_warning(case: &Case, solution: &mut Solution) {
 /// [`heavy_load_hint`].
 pub const HEAVY_POINT_M: f64 = 1000.0;
 
-/// Cells across the Hertz width (2 b) below which [`heavy_load_hint`] speaks.
+/// Cells across the Hertz contact (2 b along x, 2 a_y along y) below which
+/// [`heavy_load_hint`] speaks.
 pub const HEAVY_LOAD_CELLS: f64 = 64.0;
 
 /// What to add to the reason `termination` of a steady isothermal EHL solve of a point contact
 /// that failed (`converged` false, not cancelled) at Moes M of at least [`HEAVY_POINT_M`] on
-/// fewer than [`HEAVY_LOAD_CELLS`] cells across the Hertz width (None otherwise): there the
+/// fewer than [`HEAVY_LOAD_CELLS`] cells across its Hertz contact along x or y (None
+/// otherwise; an isothermal run, or a thermal one whose isothermal start failed): there the
 /// film is under 1e-3 of the Hertz radius, and whether the Newton solve settles hangs on the
 /// grid. Measured (a 12.7 mm steel ball on a steel flat,
 /// Roelands, alpha = 20 /GPa, eta0 = 0.05 Pa s, 1 m/s): at 700 N (M = 1340) and 1000 N (M =
@@ -792,10 +794,15 @@ pub fn heavy_load_hint(case: &Case, converged: bool, termination: &str) -> Optio
     if !report.hertz.point || m < HEAVY_POINT_M {
         return None;
     }
-    let cells = 2.0 * case.grid.nx as f64 / (case.grid.x_max - case.grid.x_min);
+    // the coarser of the two directions (cells across 2b along x, across 2 a_y along y)
+    let cells = report
+        .cells_across_2b
+        .min(report.cells_across_y.unwrap_or(f64::INFINITY));
     (cells < HEAVY_LOAD_CELLS).then(|| {
         format!(
-            "; a heavily loaded contact (Moes M = {m:.0}) on {cells:.0} cells across the Hertz width: whether the Newton solve settles there hangs on the grid (docs/ehl.md, section 5b); refine the grid to {HEAVY_LOAD_CELLS} or more cells across the Hertz width (grid.nx over grid.x_max - grid.x_min of 2 b), narrowing the domain to keep the cost (x_min = -2.5, y within +-2 suffice at such loads)"
+            "; a heavily loaded contact (Moes M = {m:.0}) on {:.0} x {:.0} cells across its Hertz contact (along x, y): whether the Newton solve settles there hangs on the grid (docs/ehl.md, section 5b); give it {HEAVY_LOAD_CELLS} or more cells across the contact in each direction (grid.nx, grid.ny), narrowing the domain to keep the cost (x from -2.5 to 1.5 and y within +-2 contact radii suffice at such loads)",
+            report.cells_across_2b,
+            report.cells_across_y.unwrap_or(f64::NAN)
         )
     })
 }
@@ -1191,15 +1198,21 @@ mod tests {
             crate::case::parse_str(ball, "b.toml", &sets).unwrap()
         };
         let failed = "Newton: line search failed";
-        let hint = heavy_load_hint(&case(&[]), false, failed).expect("a hint");
+        let heavy = case(&[]);
+        let m = crate::reference::check_report(&heavy).moes.unwrap().0;
+        assert!((1900.0..1930.0).contains(&m), "{m}");
+        let hint = heavy_load_hint(&heavy, false, failed).expect("a hint");
         assert!(
-            hint.contains("M = 19") && hint.contains("39 cells"),
+            hint.contains(&format!("M = {m:.0}")) && hint.contains("39 x 39 cells"),
             "{hint}"
         );
         assert!(heavy_load_hint(&case(&[]), true, "converged").is_none());
         assert!(heavy_load_hint(&case(&[]), false, "cancelled").is_none());
         let fine = ["grid.nx=193", "grid.ny=193", "grid.x_min=-2.5"];
         assert!(heavy_load_hint(&case(&fine), false, failed).is_none());
+        // fine along x only: still too coarse along y (39 cells across 2 a)
+        let fine_x = ["grid.nx=193", "grid.x_min=-2.5"];
+        assert!(heavy_load_hint(&case(&fine_x), false, failed).is_some());
         assert!(heavy_load_hint(&case(&["load.force=30"]), false, failed).is_none());
         let line = crate::case::parse_str(
             &ball
