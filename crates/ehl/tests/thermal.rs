@@ -1510,7 +1510,8 @@ fn a_line_at_one_gigapascal_settles_with_a_sharp_pressure_spike() {
 /// and SRR 0.5), and the surfaces' first linearised update took one of them 128 K below the
 /// inlet; the next film solve overflowed the viscosity law, the run was retried with 11
 /// points across the film and failed again. The surfaces' update is now bounded by the film's
-/// range (the maximum principle of the bodies' conduction, `ThermalContact::update_surfaces`),
+/// range and a margin (the maximum principle of the bodies' conduction,
+/// `ThermalContact::update_surfaces`),
 /// and each run settles with its 7 points (no retry, no warning), closes its energy balance
 /// within the 1 % of issue 13 (the independent check: the heat generated against the heat
 /// conducted into the bodies and convected out), both bodies take heat, and the film is far

@@ -1183,8 +1183,8 @@ mod tests {
     }
 
     /// The hint of a failed heavily loaded point contact: given at M >= 1000 on fewer than 64
-    /// cells across the Hertz width, not on a finer grid, a light load, a line or a solve that
-    /// converged.
+    /// cells across the contact along x or y, not on a grid fine in both, a light load, a line
+    /// or a solve that converged.
     #[test]
     fn a_failed_heavily_loaded_ball_is_told_to_refine_its_grid() {
         let ball = "title = \"heavy ball\"\nkind = \"ehl\"\n\

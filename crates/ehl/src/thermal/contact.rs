@@ -681,7 +681,7 @@ impl ThermalContact {
             }
             // the range the surfaces may take (see update_surfaces): the film's iterate (its
             // surface points included), the surfaces before this update and the inlet's, the
-            // top raised by the viscosity's temperature scale at the inlet
+            // top raised by half the viscosity's temperature scale at the inlet
             let range = sols
                 .iter()
                 .flatten()
