@@ -417,6 +417,45 @@ fn fixed(v: f64, digits: usize) -> String {
 /// for G of 2500-5000; soft contacts: G ~ 1 and less).
 pub const ISOVISCOUS_G: f64 = 100.0;
 
+/// Moes' load parameter M from which a point contact counts as heavily loaded
+/// ([`CheckReport::heavy_and_coarse`]).
+pub const HEAVY_POINT_M: f64 = 1000.0;
+
+/// Cells across the Hertz contact (2 b along x, 2 a_y along y) below which a heavily loaded
+/// point contact counts as coarse ([`CheckReport::heavy_and_coarse`]).
+pub const HEAVY_LOAD_CELLS: f64 = 64.0;
+
+impl CheckReport {
+    /// What `ehl check` notes, and a failed run adds to its reason (`crate::run::heavy_load_hint`),
+    /// for a point contact at Moes M of at least [`HEAVY_POINT_M`] on fewer than
+    /// [`HEAVY_LOAD_CELLS`] cells across its Hertz contact along x or y (None otherwise):
+    /// there the film is under 1e-3 of the Hertz radius, and whether the Newton solve settles
+    /// hangs on the grid. Measured (a 12.7 mm steel ball on a steel flat, Roelands,
+    /// alpha = 20 /GPa, eta0 = 0.05 Pa s, 1 m/s): at 700 N (M = 1340) and 1000 N (M = 1910) it
+    /// failed on 97^2 cells over x -3.5..1.5 b, y +-2.5 b (39 cells across the contact) and on
+    /// 129^2 over the same (52), settled on 97^2 over -2.5..1.5 b, +-2 b (48) and on 129^2 to
+    /// 193^2 over that (64-96 cells), and at 2000 N (M = 3820) on 193^2 (96); on the coarse
+    /// grids the films that settled were 0.32-0.39 of the Nijenbanning fit, on 161^2 and 193^2
+    /// 0.56-0.62 (Roelands and compressibility take 10-40 % off the fit's Barus film at these
+    /// pressures). The convergence envelope of docs/ehl.md (section 5b) agrees: its ball at
+    /// M = 1000, L = 3 failed on 43 cells across and settled on 128. A continuation in speed
+    /// found no solution on the coarse grid below 1.1-1.6 times the target speed: the grid,
+    /// not the solver's path, is the limit.
+    pub fn heavy_and_coarse(&self) -> Option<String> {
+        let (m, _) = self.moes?;
+        if !self.hertz.point || m < HEAVY_POINT_M {
+            return None;
+        }
+        let y = self.cells_across_y.unwrap_or(f64::INFINITY);
+        (self.cells_across_2b.min(y) < HEAVY_LOAD_CELLS).then(|| {
+            format!(
+                "a heavily loaded contact (Moes M = {m:.0}) on {:.0} x {:.0} cells across its Hertz contact (along x, y): whether the Newton solve settles there hangs on the grid (docs/ehl.md, section 5b); give it {HEAVY_LOAD_CELLS} or more cells across the contact in each direction (grid.nx, grid.ny), narrowing the domain to keep the cost (x from -2.5 to 1.5 and y within +-2 contact radii suffice at such loads)",
+                self.cells_across_2b, y
+            )
+        })
+    }
+}
+
 impl fmt::Display for CheckReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let h = &self.hertz;
@@ -529,6 +568,9 @@ impl fmt::Display for CheckReport {
                 "cells across contact length (y)"
             };
             row(f, lab, fixed(c, 1), "")?;
+        }
+        if let Some(text) = self.heavy_and_coarse() {
+            writeln!(f, "  note: {text}")?;
         }
         if let Some(t) = &self.transient {
             writeln!(f, "transient (motion.travel)")?;

@@ -763,48 +763,17 @@ fn inlet_warning(case: &Case, solution: &mut Solution) {
     }
 }
 
-/// Moes' load parameter M from which a point contact counts as heavily loaded for
-/// [`heavy_load_hint`].
-pub const HEAVY_POINT_M: f64 = 1000.0;
-
-/// Cells across the Hertz contact (2 b along x, 2 a_y along y) below which
-/// [`heavy_load_hint`] speaks.
-pub const HEAVY_LOAD_CELLS: f64 = 64.0;
-
-/// What to add to the reason `termination` of a steady isothermal EHL solve of a point contact
-/// that failed (`converged` false, not cancelled) at Moes M of at least [`HEAVY_POINT_M`] on
-/// fewer than [`HEAVY_LOAD_CELLS`] cells across its Hertz contact along x or y (None
-/// otherwise; an isothermal run, or a thermal one whose isothermal start failed): there the
-/// film is under 1e-3 of the Hertz radius, and whether the Newton solve settles hangs on the
-/// grid. Measured (a 12.7 mm steel ball on a steel flat,
-/// Roelands, alpha = 20 /GPa, eta0 = 0.05 Pa s, 1 m/s): at 700 N (M = 1340) and 1000 N (M =
-/// 1910) it failed on 97^2 cells over x -3.5..1.5 b, y +-2.5 b (39 cells across the Hertz
-/// width) and on 129^2 over the same (52), settled on 97^2 over -2.5..1.5 b, +-2 b (48) and
-/// on 129^2 to 193^2 over that (64-96 cells), and at 2000 N (M = 3820) on 193^2 (96); on the
-/// coarse grids the films that settled were 0.32-0.39 of the Nijenbanning fit, on 161^2 and
-/// 193^2 0.56-0.62 (Roelands and compressibility take 10-40 % off the fit's Barus film at
-/// these pressures). The convergence envelope of docs/ehl.md (section 5b) agrees: its ball
-/// at M = 1000, L = 3 failed on 43 cells across and settled on 128.
+/// What to add to the reason `termination` of a steady EHL solve of a point contact that
+/// failed (`converged` false, not cancelled) where `ehl check` notes the contact heavily
+/// loaded on a coarse grid ([`crate::reference::check::CheckReport::heavy_and_coarse`]; None
+/// otherwise). Called for an isothermal run, or a thermal one whose isothermal start failed.
 pub fn heavy_load_hint(case: &Case, converged: bool, termination: &str) -> Option<String> {
     if converged || termination == "cancelled" || case.kind != Kind::Ehl {
         return None;
     }
-    let report = crate::reference::check_report(case);
-    let (m, _) = report.moes?;
-    if !report.hertz.point || m < HEAVY_POINT_M {
-        return None;
-    }
-    // the coarser of the two directions (cells across 2b along x, across 2 a_y along y)
-    let cells = report
-        .cells_across_2b
-        .min(report.cells_across_y.unwrap_or(f64::INFINITY));
-    (cells < HEAVY_LOAD_CELLS).then(|| {
-        format!(
-            "; a heavily loaded contact (Moes M = {m:.0}) on {:.0} x {:.0} cells across its Hertz contact (along x, y): whether the Newton solve settles there hangs on the grid (docs/ehl.md, section 5b); give it {HEAVY_LOAD_CELLS} or more cells across the contact in each direction (grid.nx, grid.ny), narrowing the domain to keep the cost (x from -2.5 to 1.5 and y within +-2 contact radii suffice at such loads)",
-            report.cells_across_2b,
-            report.cells_across_y.unwrap_or(f64::NAN)
-        )
-    })
+    crate::reference::check_report(case)
+        .heavy_and_coarse()
+        .map(|text| format!("; {text}"))
 }
 
 /// A warning when the solved pressure (the last step's, or the largest over the travel) leaves
@@ -1184,7 +1153,7 @@ mod tests {
 
     /// The hint of a failed heavily loaded point contact: given at M >= 1000 on fewer than 64
     /// cells across the contact along x or y, not on a grid fine in both, a light load, a line
-    /// or a solve that converged.
+    /// or a solve that converged; `ehl check` notes the same case beforehand.
     #[test]
     fn a_failed_heavily_loaded_ball_is_told_to_refine_its_grid() {
         let ball = "title = \"heavy ball\"\nkind = \"ehl\"\n\
@@ -1206,10 +1175,18 @@ mod tests {
             hint.contains(&format!("M = {m:.0}")) && hint.contains("39 x 39 cells"),
             "{hint}"
         );
+        // `ehl check` says the same beforehand
+        let noted = |c: &Case| {
+            crate::reference::check_report(c)
+                .to_string()
+                .contains("note: a heavily loaded contact")
+        };
+        assert!(noted(&heavy));
         assert!(heavy_load_hint(&case(&[]), true, "converged").is_none());
         assert!(heavy_load_hint(&case(&[]), false, "cancelled").is_none());
         let fine = ["grid.nx=193", "grid.ny=193", "grid.x_min=-2.5"];
         assert!(heavy_load_hint(&case(&fine), false, failed).is_none());
+        assert!(!noted(&case(&fine)));
         // fine along x only: still too coarse along y (39 cells across 2 a)
         let fine_x = ["grid.nx=193", "grid.x_min=-2.5"];
         assert!(heavy_load_hint(&case(&fine_x), false, failed).is_some());
