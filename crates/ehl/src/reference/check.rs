@@ -429,8 +429,9 @@ impl CheckReport {
     /// What `ehl check` notes, and a failed run adds to its reason (`crate::run::heavy_load_hint`),
     /// for a point contact at Moes M of at least [`HEAVY_POINT_M`] on fewer than
     /// [`HEAVY_LOAD_CELLS`] cells across its Hertz contact along x or y (None otherwise):
-    /// there the film is under 1e-3 of the Hertz radius, and whether the Newton solve settles
-    /// hangs on the grid. Measured (a 12.7 mm steel ball on a steel flat, Roelands,
+    /// there the film is thin against the contact (0.2 um against a = 0.44 mm, 4.6e-4 of it,
+    /// on the measured ball at 1000 N), and whether the Newton solve settles hangs on the
+    /// grid. Measured (a 12.7 mm steel ball on a steel flat, Roelands,
     /// alpha = 20 /GPa, eta0 = 0.05 Pa s, 1 m/s): at 700 N (M = 1340) and 1000 N (M = 1910) it
     /// failed on 97^2 cells over x -3.5..1.5 b, y +-2.5 b (39 cells across the contact) and on
     /// 129^2 over the same (52), settled on 97^2 over -2.5..1.5 b, +-2 b (48) and on 129^2 to
