@@ -300,8 +300,16 @@ impl std::fmt::Display for Termination {
             } => {
                 write!(
                     f,
-                    "thermal fixed point not settled: after {outer} outer iterations the film temperature still changed by {change_k:.3} K, the film by {film_change:.1e} of its thinnest"
+                    "thermal fixed point not settled: after {outer} outer iterations "
                 )?;
+                // an infinite change: the last update solved cells the one before did not
+                // (the film's extent still moving), not a temperature
+                if change_k.is_finite() {
+                    write!(f, "the film temperature still changed by {change_k:.3} K")?;
+                } else {
+                    write!(f, "the film's extent still moved (cells joined it)")?;
+                }
+                write!(f, ", the film by {film_change:.1e} of its thinnest")?;
                 if let Some(r) = factor_residual {
                     write!(f, ", the Reynolds factors by {r:.1e} (log)")?;
                 }
@@ -1309,4 +1317,32 @@ fn finish(
     out.outflow = m.outflow * q;
     out.side_leakage = m.side_leakage * q;
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Termination;
+
+    /// An unsettled thermal fixed point names what still moved: a temperature change in K, or,
+    /// where the last update solved cells the one before did not (an infinite change), the
+    /// film's extent, never "inf K".
+    #[test]
+    fn an_unsettled_thermal_fixed_point_says_what_still_moved() {
+        let text = |change_k| {
+            Termination::ThermalNotSettled {
+                outer: 80,
+                change_k,
+                film_change: 1e-3,
+                residual_k: 0.5,
+                factor_residual: Some(2.0),
+            }
+            .to_string()
+        };
+        let a = text(0.25);
+        assert!(a.contains("changed by 0.250 K"), "{a}");
+        let b = text(f64::INFINITY);
+        assert!(!b.contains("inf"), "{b}");
+        assert!(b.contains("extent still moved"), "{b}");
+        assert!(b.contains("Reynolds factors by 2.0e0"), "{b}");
+    }
 }
