@@ -163,10 +163,18 @@ const POLISH_WORTH: f64 = 15.0;
 /// with the estimate alone)
 const POLISH_LATE: usize = 20;
 
-/// After a polish that failed the next waits this many outer iterations. After one that
-/// reached a solution which the next update did not find settled (the film's extent, frozen
-/// in the polish, moved with its pressure) the next outer iteration polishes again.
-const POLISH_EVERY: usize = 10;
+/// After a polish of a line that failed the next waits this many outer iterations (a finite
+/// contact is not polished again: [`PolishSchedule::failed`]). After one that reached a
+/// solution which the next update did not find settled (the film's extent, frozen in the
+/// polish, moved with its pressure) the next outer iteration polishes again. A polish that
+/// fails from a wandering fixed point may succeed from the state a few outer iterations on,
+/// and a line's costs ~0.1-1 s. Measured (2026-12-05, the scan's Eyring line on Barus's law at
+/// 1 GPa, SRR 0.25 / 0.3 / 0.35 on 240 / 256 / 272 cells, whose factors' residual wanders at
+/// 3-20): with 10, 8 of the 9 settled (the scan's own case, SRR 0.3 on 256 cells, failed its
+/// polish at the 20th outer iteration and its Reynolds solve at the 26th); with 3, all 9, in
+/// 21-24 outer iterations. The thermal map: the same 18 of 20 settle, 479 outer iterations
+/// instead of 508; its two unsettled runs (L = 22) take 1.8 times longer in their 80.
+const POLISH_EVERY: usize = 3;
 
 /// and only once the fixed point is near: the factors' residual at most this, the temperature
 /// solve's own residual at most [`POLISH_INNER_RESIDUAL_K`] (a film running away with too
@@ -494,11 +502,14 @@ fn run(
         // the distance to the fixed point, from the contraction rho of the last two changes:
         // e ~ change rho / (1 - rho) (a linear fixed point; measured rho ~ 0.87 on the thesis
         // Table 3.7 line at SRR 0.3, where the change alone would stop 7x too early)
-        let rho = if prev.is_finite() && change < prev {
-            change / prev
-        } else {
-            0.99
-        };
+        // Where the change did not fall, the factors' residual ratio stands in for it (see
+        // film_contraction; the temperatures answer the factors as the film does), and 0.99
+        // where that did not fall either. Near the end the change is the temperature solves'
+        // own noise: the thesis roller + `[thermal]` (256 x 512, pure rolling) changed by
+        // 1.20e-3 and then 1.66e-3 K (against a 0.05 K tolerance) while its factors' residual
+        // fell 2.5e-4 -> 5.9e-5, and 0.99 held it one more outer iteration.
+        let falling = prev.is_finite() && change < prev;
+        let rho = if falling { change / prev } else { 0.99 };
         // a growing change (both finite: an infinite one is a cell solved for the first time)
         // is the coupling overshooting: damp it
         if prev.is_finite() && change.is_finite() && change > prev {
@@ -514,7 +525,6 @@ fn run(
                 shrinking = 0;
             }
         }
-        let estimate = change * rho / (1.0 - rho);
         prev = change;
         film_change = self::film_change(&h_si, &h_prev);
         h_prev.copy_from_slice(&h_si);
@@ -529,6 +539,8 @@ fn run(
         last_pair = Some((factors.clone(), fresh.clone()));
         let mut last_contraction = std::mem::replace(&mut prev_contraction, contraction);
         let rho_film = film_contraction(&residuals).unwrap_or(rho);
+        let rho_t = if falling { rho } else { rho_film };
+        let estimate = change * rho_t / (1.0 - rho_t);
         let settled = estimate <= thermal.tolerance_k
             && residual <= thermal.factor_tolerance
             && contact.inner_residual() <= thermal.tolerance_k

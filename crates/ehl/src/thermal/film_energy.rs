@@ -939,6 +939,9 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     let converged = s.converged;
     let f = s.profile;
     *out.poiseuille = f.rho_over_eta_e;
+    // the compression work's gradient, from the column's mean velocity (see
+    // compression_gradient)
+    let gx = compression_gradient(col.dpdx, line.dpdx[i], rule.integrate(&f.u));
     for k in 0..nz {
         let at = i * nz + k;
         out.mass_flux[k] = col.h * rho[k] * f.u[k];
@@ -947,8 +950,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
         } else {
             0.0
         };
-        out.compression[k] = drho[k] / rho[k]
-            * (f.u[k] * compression_gradient(col.dpdx, line.dpdx[i]) + f.v[k] * col.dpdy);
+        out.compression[k] = drho[k] / rho[k] * (f.u[k] * gx + f.v[k] * col.dpdy);
         out.density[k] = rho[k];
         if opts.linearise_heating && out.heating[k] > 0.0 {
             out.heating_slope[k] =
@@ -968,25 +970,44 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 /// The pressure gradient along x (Pa/m) of a column's compression work -(T / rho) (d rho / dT)
 /// (u dp/dx + v dp/dy) (W/m^3; the energy equation of thermal EHL, e.g. Yang & Wen, J. Tribol.
 /// 112 (1990) 631; Habchi et al. 2008, thermal point contacts;
-/// [`LineCoefficients::compression`]): the column's flux-driven gradient `flux_driven`, held to
-/// at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's own `pressure` (the line's central
-/// difference) where the two agree in sign.
+/// [`LineCoefficients::compression`]) in a column whose oil moves at `u` along x on average
+/// (m/s, or any positive multiple: the sign is what counts): the column's
+/// flux-driven gradient `flux_driven` or the pressure's own `pressure` (the line's central
+/// difference), whichever keeps the film's iteration stable.
 ///
 /// The two are one quantity at the fixed point (the flux-driven gradient carries the flux the
-/// Reynolds solve gives), and the cap leaves the fixed point alone. A flux-driven column's
+/// Reynolds solve gives), so the choice leaves the fixed point alone. A flux-driven column's
 /// gradient is the pressure's times the ratio of the lagged flow factor to the column's current
-/// one, so the two share their sign and the cap holds that ratio to 2. Between outer
-/// iterations, with the Reynolds factors lagged, they part. At a sharp pressure spike the
-/// flux-driven one overshoots: measured on a line at p_h = 1 GPa and 5 m/s (256 cells, the
-/// spike one or two cells wide), a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with
-/// a failed temperature solve, the spike's cells heated or cooled by hundreds of kelvin;
-/// capped, both settle. In the thick, hot inlet of a high thermal loading the flux-driven
-/// gradient is the steadier one (it falls as the oil thins): the pressure's own gradient alone
-/// settled 16 of the 20 runs of the thermal map of docs/thermal.md instead of 19
-/// (docs/thermal.md, "Robustness beyond the examples").
-pub fn compression_gradient(flux_driven: f64, pressure: f64) -> f64 {
-    if flux_driven * pressure > 0.0 && flux_driven.abs() > COMPRESSION_GRADIENT_CAP * pressure.abs()
-    {
+/// one, so the two share their sign; between outer iterations, with the Reynolds factors
+/// lagged, they part, and which one a point takes sets the feedback of its temperature on its
+/// compression work:
+/// * *Compressed columns* (`u` and the gradient of one sign: the oil compressed as it moves): the
+///   flux-driven gradient, held to at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's.
+///   A hotter column is thinner, so its flux-driven gradient, and the heating, fall: a
+///   restoring feedback. In the thick, hot inlet of a high thermal loading it is the steadier
+///   one: the pressure's own gradient alone settled 16 of the 20 runs of the thermal map of
+///   docs/thermal.md instead of 19. The cap: at a sharp pressure spike the flux-driven one
+///   overshoots (measured on a line at p_h = 1 GPa and 5 m/s, 256 cells, the spike one or two
+///   cells wide: a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with a failed
+///   temperature solve, the spike's cells heated or cooled by hundreds of kelvin; capped, both
+///   settle).
+/// * *Expanding columns* (of opposite signs: the oil leaving a pressure spike): the smaller of the two
+///   in magnitude. There the flux-driven gradient feeds back the wrong way: a cooler column is
+///   more viscous, its flux-driven gradient steeper, its expansion cooling stronger. Measured
+///   (docs/thermal.md, "Fast balls"): a steel ball at 10-20 m/s (p_h 0.77 GPa, Roelands,
+///   alpha 20 /GPa, thermal expansion 6.5e-4 /K) has an outlet spike of up to 1.8 p_h, and the
+///   oil leaving it cooled 40-80 K below the walls in some film iterations and not in others;
+///   the film's own iteration then left residuals of 5-100 K and the fixed point did not settle,
+///   even in pure rolling (without thermal expansion it settled: no compression work).
+pub fn compression_gradient(flux_driven: f64, pressure: f64, u: f64) -> f64 {
+    let agree = flux_driven * pressure > 0.0;
+    if agree && u * pressure < 0.0 {
+        if flux_driven.abs() < pressure.abs() {
+            flux_driven
+        } else {
+            pressure
+        }
+    } else if agree && flux_driven.abs() > COMPRESSION_GRADIENT_CAP * pressure.abs() {
         COMPRESSION_GRADIENT_CAP * pressure
     } else {
         flux_driven
@@ -2291,20 +2312,37 @@ mod tests {
         assert!(matches!(ea, FilmError::Law { t, .. } if t == 1e5), "{ea:?}");
     }
 
-    /// The compression's gradient is the flux-driven one, held to at most twice the pressure's
-    /// own where they agree in sign: unchanged where they agree (the fixed point), below the
-    /// cap or of opposite signs; the cap where the flux-driven one overshoots; odd.
+    /// The compression's gradient in a compressed column (u dp/dx > 0) is the flux-driven one, held
+    /// to at most twice the pressure's own where they agree in sign: unchanged where they agree
+    /// (the fixed point), below the cap or of opposite signs; the cap where the flux-driven one
+    /// overshoots. In an expanding column (u dp/dx < 0) the smaller of the two where they agree in
+    /// sign. Odd in the gradients and u together.
     #[test]
     fn the_compression_gradient_is_the_flux_driven_one_capped() {
-        assert_eq!(compression_gradient(3e12, 3e12), 3e12);
-        assert_eq!(compression_gradient(1e12, 4e12), 1e12);
-        assert_eq!(compression_gradient(7e12, 4e12), 7e12);
-        assert_eq!(compression_gradient(9e12, 4e12), 8e12);
-        assert_eq!(compression_gradient(-9e12, -4e12), -8e12);
-        assert_eq!(compression_gradient(-5e12, 2e12), -5e12);
-        assert_eq!(compression_gradient(2e12, 0.0), 2e12);
-        for (a, b) in [(2.0, 7.0), (-3.0, -0.5), (1.0, -1.0), (10.0, 1.0)] {
-            assert_eq!(compression_gradient(-a, -b), -compression_gradient(a, b));
+        let u = 1.0;
+        assert_eq!(compression_gradient(3e12, 3e12, u), 3e12);
+        assert_eq!(compression_gradient(1e12, 4e12, u), 1e12);
+        assert_eq!(compression_gradient(7e12, 4e12, u), 7e12);
+        assert_eq!(compression_gradient(9e12, 4e12, u), 8e12);
+        assert_eq!(compression_gradient(-9e12, -4e12, -u), -8e12);
+        assert_eq!(compression_gradient(-5e12, 2e12, u), -5e12);
+        assert_eq!(compression_gradient(2e12, 0.0, u), 2e12);
+        // expanding columns: the smaller of the two
+        assert_eq!(compression_gradient(-3e12, -3e12, u), -3e12);
+        assert_eq!(compression_gradient(-9e12, -4e12, u), -4e12);
+        assert_eq!(compression_gradient(-1e12, -4e12, u), -1e12);
+        assert_eq!(compression_gradient(9e12, 4e12, -u), 4e12);
+        assert_eq!(compression_gradient(-5e12, 2e12, -u), -5e12);
+        for (a, b, u) in [
+            (2.0, 7.0, 1.0),
+            (-3.0, -0.5, 1.0),
+            (1.0, -1.0, -2.0),
+            (10.0, 1.0, -1.0),
+        ] {
+            assert_eq!(
+                compression_gradient(-a, -b, -u),
+                -compression_gradient(a, b, u)
+            );
         }
     }
 
