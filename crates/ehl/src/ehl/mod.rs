@@ -254,8 +254,9 @@ pub enum Termination {
     /// stopped from outside through [`crate::run::cancel`] (the result is thrown away)
     Cancelled,
     /// thermal runs: every Newton solve converged, but over the last of `outer` fixed-point
-    /// iterations the film temperature still changed by `change_k` (K) or the film by
-    /// `film_change` of its thinnest value
+    /// iterations the film temperature still changed by `change_k` (K; infinite where the last
+    /// update solved cells the one before did not: the film's extent still moved) or the film
+    /// by `film_change` of its thinnest value
     ThermalNotSettled {
         outer: usize,
         change_k: f64,
@@ -304,7 +305,7 @@ impl std::fmt::Display for Termination {
                 )?;
                 // an infinite change: the last update solved cells the one before did not
                 // (the film's extent still moving), not a temperature
-                if change_k.is_finite() {
+                if *change_k != f64::INFINITY {
                     write!(f, "the film temperature still changed by {change_k:.3} K")?;
                 } else {
                     write!(f, "the film's extent still moved (cells joined it)")?;

@@ -170,10 +170,13 @@ const POLISH_LATE: usize = 20;
 /// fails from a wandering fixed point may succeed from the state a few outer iterations on,
 /// and a line's costs ~0.1-1 s. Measured (2026-12-05, the scan's Eyring line on Barus's law at
 /// 1 GPa, SRR 0.25 / 0.3 / 0.35 on 240 / 256 / 272 cells, whose factors' residual wanders at
-/// 3-20): with 10, 8 of the 9 settled (the scan's own case, SRR 0.3 on 256 cells, failed its
-/// polish at the 20th outer iteration and its Reynolds solve at the 26th); with 3, all 9, in
-/// 21-24 outer iterations. The thermal map: the same 18 of 20 settle, 479 outer iterations
-/// instead of 508; its two unsettled runs (L = 22) take 1.8 times longer in their 80.
+/// 3-20), with the expanding columns' compression gradient (`film_energy::compression_gradient`,
+/// same commit): with 10, 8 of the 9 settled (the scan's own case, SRR 0.3 on 256 cells,
+/// failed its polish at the 20th outer iteration and its Reynolds solve at the 26th; before
+/// that gradient it had settled through the rescue of a failed Reynolds solve at its 17th);
+/// with 3, all 9, in 21-24 outer iterations. The thermal map: the same 18 of 20 settle, 479
+/// outer iterations instead of 508 (522 before the commit); its two unsettled runs (L = 22)
+/// take 1.8 times longer in their 80.
 const POLISH_EVERY: usize = 3;
 
 /// and only once the fixed point is near: the factors' residual at most this, the temperature
@@ -502,14 +505,17 @@ fn run(
         // the distance to the fixed point, from the contraction rho of the last two changes:
         // e ~ change rho / (1 - rho) (a linear fixed point; measured rho ~ 0.87 on the thesis
         // Table 3.7 line at SRR 0.3, where the change alone would stop 7x too early)
-        // Where the change did not fall, the factors' residual ratio stands in for it (see
-        // film_contraction; the temperatures answer the factors as the film does), and 0.99
-        // where that did not fall either. Near the end the change is the temperature solves'
-        // own noise: the thesis roller + `[thermal]` (256 x 512, pure rolling) changed by
+        // Where a change already within the tolerance did not fall, the factors' residual
+        // ratio stands in for it (see film_contraction; the temperatures answer the factors as
+        // the film does): near the end the change is the temperature solves' own noise. The
+        // thesis roller + `[thermal]` (the example's 512 x 128, pure rolling) changed by
         // 1.20e-3 and then 1.66e-3 K (against a 0.05 K tolerance) while its factors' residual
-        // fell 2.5e-4 -> 5.9e-5, and 0.99 held it one more outer iteration.
+        // fell 2.5e-4 -> 5.9e-5, and 0.99 held it one more outer iteration. A larger change
+        // that grew (an overshoot, damped below) or followed cells solved for the first time
+        // keeps 0.99.
         let falling = prev.is_finite() && change < prev;
         let rho = if falling { change / prev } else { 0.99 };
+        let noise = prev.is_finite() && change <= thermal.tolerance_k;
         // a growing change (both finite: an infinite one is a cell solved for the first time)
         // is the coupling overshooting: damp it
         if prev.is_finite() && change.is_finite() && change > prev {
@@ -539,7 +545,7 @@ fn run(
         last_pair = Some((factors.clone(), fresh.clone()));
         let mut last_contraction = std::mem::replace(&mut prev_contraction, contraction);
         let rho_film = film_contraction(&residuals).unwrap_or(rho);
-        let rho_t = if falling { rho } else { rho_film };
+        let rho_t = if falling || !noise { rho } else { rho_film };
         let estimate = change * rho_t / (1.0 - rho_t);
         let settled = estimate <= thermal.tolerance_k
             && residual <= thermal.factor_tolerance

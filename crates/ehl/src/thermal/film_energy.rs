@@ -973,13 +973,14 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 /// [`LineCoefficients::compression`]) in a column whose oil moves at `u` along x on average
 /// (m/s, or any positive multiple: the sign is what counts): the column's
 /// flux-driven gradient `flux_driven` or the pressure's own `pressure` (the line's central
-/// difference), whichever keeps the film's iteration stable.
+/// difference), whichever bounds the feedback of the column's temperature on its compression
+/// work.
 ///
 /// The two are one quantity at the fixed point (the flux-driven gradient carries the flux the
 /// Reynolds solve gives), so the choice leaves the fixed point alone. A flux-driven column's
 /// gradient is the pressure's times the ratio of the lagged flow factor to the column's current
 /// one, so the two share their sign; between outer iterations, with the Reynolds factors
-/// lagged, they part, and which one a point takes sets the feedback of its temperature on its
+/// lagged, they part, and which one a column takes sets the feedback of its temperature on its
 /// compression work:
 /// * *Compressed columns* (`u` and the gradient of one sign: the oil compressed as it moves): the
 ///   flux-driven gradient, held to at most [`COMPRESSION_GRADIENT_CAP`] times the pressure's.
@@ -991,14 +992,20 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 ///   cells wide: a Newtonian oil at SRR 0.5 and Carreau at SRR -0.5 ended with a failed
 ///   temperature solve, the spike's cells heated or cooled by hundreds of kelvin; capped, both
 ///   settle).
-/// * *Expanding columns* (of opposite signs: the oil leaving a pressure spike): the smaller of the two
-///   in magnitude. There the flux-driven gradient feeds back the wrong way: a cooler column is
-///   more viscous, its flux-driven gradient steeper, its expansion cooling stronger. Measured
-///   (docs/thermal.md, "Fast balls"): a steel ball at 10-20 m/s (p_h 0.77 GPa, Roelands,
-///   alpha 20 /GPa, thermal expansion 6.5e-4 /K) has an outlet spike of up to 1.8 p_h, and the
-///   oil leaving it cooled 40-80 K below the walls in some film iterations and not in others;
-///   the film's own iteration then left residuals of 5-100 K and the fixed point did not settle,
-///   even in pure rolling (without thermal expansion it settled: no compression work).
+/// * *Expanding columns* (of opposite signs: the oil leaving a pressure spike): the smaller of
+///   the two in magnitude. There the flux-driven gradient feeds back the wrong way: a cooler
+///   column is more viscous, its flux-driven gradient steeper, its expansion cooling stronger;
+///   the smaller of the two bounds that cooling by the pressure's own gradient. Measured
+///   (docs/thermal.md, "Fast balls"): a steel ball (p_h 0.77 GPa, Roelands, alpha 20 /GPa,
+///   thermal expansion 6.5e-4 /K, Newtonian) has an outlet spike of up to 1.8 p_h at
+///   10-20 m/s; at 10 and 15 m/s with SRR 0.3 its film iteration left residuals of 5-100 K at
+///   the cells leaving the spike and the fixed point did not settle (at 15 m/s in pure
+///   rolling the oil there was 40-80 K below the walls in some outer iterations and not in
+///   others); with this choice both settle (15 m/s in pure rolling and 20 m/s still do not).
+///   Without thermal expansion (no compression work) the pure-rolling ball at 15 m/s
+///   settled.
+///
+/// The column's mean velocity decides, not each point's: a column keeps one gradient.
 pub fn compression_gradient(flux_driven: f64, pressure: f64, u: f64) -> f64 {
     let agree = flux_driven * pressure > 0.0;
     if agree && u * pressure < 0.0 {
