@@ -170,7 +170,7 @@ const POLISH_LATE: usize = 20;
 /// fails from a wandering fixed point may succeed from the state a few outer iterations on,
 /// and a line's costs ~0.1-1 s. Measured (2026-12-05, the scan's Eyring line on Barus's law at
 /// 1 GPa, SRR 0.25 / 0.3 / 0.35 on 240 / 256 / 272 cells, whose factors' residual wanders at
-/// 3-20), with the expanding columns' compression gradient (`film_energy::compression_gradient`,
+/// 3-20), with the expanding oil's compression gradient (`film_energy::compression_gradient`,
 /// same commit): with 10, 8 of the 9 settled (the scan's own case, SRR 0.3 on 256 cells,
 /// failed its polish at the 20th outer iteration and its Reynolds solve at the 26th; before
 /// that gradient it had settled through the rescue of a failed Reynolds solve at its 17th);
