@@ -1392,8 +1392,8 @@ fn an_eyring_ball_whose_fixed_point_expands_settles_with_newton() {
 ///   that expands without losing heat at d ln T / dp = eps / (rho0 DH(p) c (1 - eps (T -
 ///   T0))^2), at most eps / (rho0 c); the oil's pressure falls by at most p_max while it is
 ///   below T0; walls no colder than T_c and the shear heating only add heat;
-/// * SRR 0.3 settles (measured 22 outer iterations, balance 2.2e-4). Before the expanding
-///   columns took the smaller of their two pressure gradients in the compression work
+/// * SRR 0.3 settles (measured 22 outer iterations, balance 2.2e-4). Before expanding oil
+///   took the smaller of its column's two pressure gradients in the compression work
 ///   (`film_energy::compression_gradient`) it did not: the film's own iteration left
 ///   residuals of 5-100 K at the cells leaving the spike, and after 80 outer iterations the
 ///   film's extent was still moving (checked: with the old gradient this test fails there;
