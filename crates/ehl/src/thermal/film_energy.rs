@@ -1150,12 +1150,39 @@ pub fn solve_line_linear(
         }
     }
     let ni = nz - 2;
+    let (mf, jflux) = face_fluxes(rule, nx, 1.0 / line.dx, &coef.mass_flux, &sinks(line, coef));
+    let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+    LINE_SYSTEM.with(|cell| {
+        let mut a = cell.borrow_mut();
+        a.reset(nx * ni, ni, ni);
+        assemble_and_solve(rule, oil, line, coef, &mut a, (&mf, &jflux), h_min)
+    })
+}
+
+thread_local! {
+    /// The banded matrix of [`solve_line_linear`], reused from line to line (see
+    /// [`Banded::reset`]).
+    static LINE_SYSTEM: std::cell::RefCell<Banded> = std::cell::RefCell::new(Banded::new(0, 0, 0));
+}
+
+/// The body of [`solve_line_linear`] with its checks done, its face fluxes `(mf, jflux)` and
+/// the line's thinnest film `h_min` known, assembled into `a` (zero, of order nx (nz - 2) with
+/// nz - 2 sub- and super-diagonals).
+fn assemble_and_solve(
+    rule: &Lobatto,
+    oil: &OilThermal,
+    line: &Line,
+    coef: &LineCoefficients,
+    a: &mut Banded,
+    (mf, jflux): (&[f64], &[f64]),
+    h_min: f64,
+) -> Result<Vec<f64>, FilmError> {
+    let nz = rule.len();
+    let nx = line.nx();
+    let ni = nz - 2;
     let inv_dx = 1.0 / line.dx;
     let cp = oil.heat_capacity;
     let t_in = line.t_in;
-    let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &sinks(line, coef));
-    let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
-    let mut a = Banded::new(nx * ni, ni, ni);
     let mut b = vec![0.0; nx * ni];
     for i in 0..nx {
         let h = line.h[i];
