@@ -194,9 +194,9 @@ const POLISH_EVERY: usize = 3;
 const POLISH_FACTOR_RESIDUAL: f64 = 0.1;
 const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 
-/// A line polished this many times since its last failed polish, each time to a solution that
-/// the update after it did not find settled, is given back to the fixed point for the rest of
-/// the run: a guard against the two methods not solving quite the same equations. They did
+/// A contact polished this many times since its last failed polish, each time to a solution
+/// that the update after it did not find settled nor much nearer ([`POLISH_PROGRESS`]), is
+/// given back to the fixed point for the rest of the run: a guard against the two methods not solving quite the same equations. They did
 /// not where the limiting shear stress capped columns, before the fixed point's flux-driven
 /// columns matched their flux after the cap (`film_energy`'s `column_coefficients`): the line
 /// was polished again every outer iteration to `max_outer` (measured: the example line at
@@ -204,6 +204,17 @@ const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 /// iterations, where the fixed point alone settled in 20 to 37; with the old matching and this
 /// guard the thermal map's results were unchanged to the last digit).
 const POLISH_RUN: usize = 3;
+
+/// A polish that reached a solution after which the update found the factors' residual at
+/// most this fraction of the residual the polish started from made progress, and is not
+/// counted in the run of [`POLISH_RUN`]: a ball at 15 m/s in pure rolling (the robustness
+/// scan's steel ball, L = 3.4) was polished at its 20th, 21st and 22nd outer iterations, each
+/// time to a solution whose film extent, frozen in the polish, was one cell short at the side
+/// of the outlet spike (the residual's cell moving diagonally (79, 42) -> (80, 43) -> (81, 44)
+/// -> (82, 45) of 97^2), each polish lowering the residual about tenfold (0.50 -> 3.5e-2 ->
+/// 4.2e-3 -> 4.3e-4); handed back to the fixed point there, whose map expands at that
+/// solution, it diverged (residual 1.7 by the 32nd) and did not settle in 80.
+const POLISH_PROGRESS: f64 = 0.3;
 
 /// When a contact's fixed point is handed to Newton's method on the coupled problem
 /// (`super::thermal_newton::polish`): from [`POLISH_FROM`], when slow ([`POLISH_WORTH`],
@@ -213,7 +224,7 @@ const POLISH_RUN: usize = 3;
 /// frozen in the polish, may have moved with its pressure, and the update after it shows
 /// where), [`POLISH_EVERY`] outer iterations after one that failed, and never again after
 /// [`POLISH_RUN`] polishes in a row that reached a solution the fixed point did not then
-/// find settled.
+/// find settled nor much nearer ([`POLISH_PROGRESS`]).
 #[derive(Debug, Clone)]
 struct PolishSchedule {
     /// the first outer iteration that may polish
@@ -221,8 +232,12 @@ struct PolishSchedule {
     /// the last polish reached a solution (which the update after it did not find settled,
     /// or the run would have stopped)
     repolish: bool,
-    /// polishes since the last failed one that reached a solution (see [`POLISH_RUN`])
+    /// polishes since the last failed one that reached a solution without making progress
+    /// (see [`POLISH_RUN`], [`POLISH_PROGRESS`])
     reached_in_a_row: usize,
+    /// the factors' residual the last polish that reached a solution started from, until the
+    /// update after it is seen ([`PolishSchedule::seen`])
+    started_from: Option<f64>,
 }
 
 impl PolishSchedule {
@@ -231,6 +246,7 @@ impl PolishSchedule {
             next: POLISH_FROM,
             repolish: false,
             reached_in_a_row: 0,
+            started_from: None,
         }
     }
 
@@ -269,11 +285,24 @@ impl PolishSchedule {
             && inner_k <= POLISH_INNER_RESIDUAL_K
     }
 
-    /// The polish at outer iteration `outer` reached a solution.
-    fn reached(&mut self, outer: usize) {
+    /// The polish at outer iteration `outer`, started at the factors' residual `from`, reached
+    /// a solution.
+    fn reached(&mut self, outer: usize, from: f64) {
         self.reached_in_a_row += 1;
         self.next = outer + 1;
         self.repolish = true;
+        self.started_from = Some(from);
+    }
+
+    /// The factors' residual of an outer iteration's update: after a polish that reached a
+    /// solution, that polish is not counted in the run of [`POLISH_RUN`] when the residual
+    /// fell to at most [`POLISH_PROGRESS`] of the one it started from.
+    fn seen(&mut self, residual: f64) {
+        if let Some(from) = self.started_from.take() {
+            if residual <= POLISH_PROGRESS * from {
+                self.reached_in_a_row -= 1;
+            }
+        }
     }
 
     /// The polish at outer iteration `outer` failed (the fixed point goes on from its own
@@ -283,6 +312,7 @@ impl PolishSchedule {
     /// not seen to succeed later (none failed on the robustness scan; not measured further).
     fn failed(&mut self, outer: usize, finite: bool) {
         self.reached_in_a_row = 0;
+        self.started_from = None;
         self.next = if finite {
             usize::MAX
         } else {
@@ -461,7 +491,7 @@ fn run(
         ($pol:expr) => {{
             let pol = $pol;
             coupled_steps += pol.steps;
-            polishing.reached(outer);
+            polishing.reached(outer, residual);
             check_polish = true;
             factors = pol.factors;
             end = Some(pol.end);
@@ -537,6 +567,7 @@ fn run(
         contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
         residual = factor_residual(grid, &h_si, &factors, &fresh);
         residuals.push(residual);
+        polishing.seen(residual);
         // how strongly the temperatures answer the factors, from this outer iteration and the
         // last (see mixing_parameter)
         let contraction = last_pair
@@ -1248,7 +1279,7 @@ mod tests {
         let first = POLISH_FROM;
         for k in 0..POLISH_RUN {
             assert!(due(&s, first + k), "polish {k} of the run");
-            s.reached(first + k);
+            s.reached(first + k, 0.01);
         }
         let after = first + POLISH_RUN;
         assert!(
@@ -1258,15 +1289,15 @@ mod tests {
 
         // a failed polish: the next one POLISH_EVERY outer iterations later, the count anew
         let mut s = PolishSchedule::new();
-        s.reached(first);
-        s.reached(first + 1);
+        s.reached(first, 0.01);
+        s.reached(first + 1, 0.01);
         s.failed(first + 2, false);
         let next = first + 2 + POLISH_EVERY;
         assert!((first + 3..next).all(|outer| !due(&s, outer)));
         assert!(due(&s, next));
         for k in 0..POLISH_RUN {
             assert!(due(&s, next + k), "polish {k} after the failure");
-            s.reached(next + k);
+            s.reached(next + k, 0.01);
         }
         assert!(!due(&s, next + POLISH_RUN));
 
@@ -1306,7 +1337,7 @@ mod tests {
         // a fast fixed point is polished again at the next outer iteration after a polish that
         // reached a solution, not after one that failed
         let mut s = PolishSchedule::new();
-        s.reached(first);
+        s.reached(first, 0.01);
         assert!(s.due(first + 1, max, &fast[..first + 1], tol, inner, false));
         s.failed(first + 1, false);
         let next = first + 1 + POLISH_EVERY;
@@ -1327,6 +1358,43 @@ mod tests {
             false
         ));
         assert!(s.due(POLISH_LATE, max, &late(POLISH_LATE), tol, inner, false));
+    }
+
+    /// A polish after whose update the factors' residual is at most POLISH_PROGRESS of the one
+    /// it started from made progress and is not counted in the run of POLISH_RUN: a contact
+    /// whose polishes each lower the residual tenfold (each to a film extent one cell short,
+    /// as the fast ball's) is polished on, line or finite; one whose polishes lower it by
+    /// less is given back to the fixed point after POLISH_RUN of them.
+    #[test]
+    fn polishes_that_make_progress_are_not_counted_in_the_run() {
+        let (tol, inner, max) = (1e-4, 0.1, 80);
+        // wandering slowly (contraction 0.95) at ~0.2 by POLISH_LATE
+        let slow: Vec<f64> = (0..max).map(|k| 0.5 * 0.95f64.powi(k as i32)).collect();
+        for (gain, polished) in [(0.1, 2 * POLISH_RUN), (0.5, POLISH_RUN)] {
+            for finite in [false, true] {
+                let mut s = PolishSchedule::new();
+                let mut hist = slow[..POLISH_LATE].to_vec();
+                let mut count = 0;
+                for outer in POLISH_LATE..POLISH_LATE + 2 * POLISH_RUN {
+                    if !s.due(outer, max, &hist, tol, inner, finite) {
+                        break;
+                    }
+                    count += 1;
+                    let from = *hist.last().unwrap();
+                    s.reached(outer, from);
+                    // the next update
+                    hist.push(gain * from);
+                    s.seen(gain * from);
+                }
+                assert_eq!(count, polished, "gain {gain}, finite {finite}");
+            }
+        }
+        // a failed polish forgets the one before it
+        let mut s = PolishSchedule::new();
+        s.reached(POLISH_LATE, 0.2);
+        s.failed(POLISH_LATE + 1, false);
+        s.seen(1e-3);
+        assert_eq!(s.reached_in_a_row, 0);
     }
 
     /// A finite contact is polished only from POLISH_LATE on, and only when slow there (its
@@ -1359,7 +1427,7 @@ mod tests {
         wandering_is_polished_from_late(&s, true);
         // again after a polish that reached a solution, however fast
         let mut s = PolishSchedule::new();
-        s.reached(POLISH_LATE);
+        s.reached(POLISH_LATE, 0.01);
         let mut closing = fast.clone();
         closing.push(fast[POLISH_LATE - 1] * 0.3);
         assert!(s.due(POLISH_LATE + 1, max, &closing, tol, inner, true));
