@@ -142,7 +142,7 @@ def cases():
                     ["motion.slide_to_roll=0.3", f"motion.entrainment_speed={u}"]))
     # (added later 2026-12-05: in pure rolling these were polished to a film end one cell short
     # three times, handed back to a fixed point that expands there, and did not settle before
-    # polishes that bring it tenfold nearer stopped counting towards that limit)
+    # polishes that bring it at least ~3 times nearer stopped counting towards that limit)
     for u in [15.0, 20.0]:
         out.append((f"ball, Newtonian, SRR 0, {u:g} m/s", BALL,
                     ["motion.slide_to_roll=0.0", f"motion.entrainment_speed={u}"]))

@@ -1454,29 +1454,39 @@ fn a_fast_ball_cools_its_oil_leaving_the_spike_and_settles() {
 /// whose film extent, frozen in it, is one cell short there (the residual's cell moving
 /// diagonally from (79, 42) to (83, 46)), and the update after it lowers the factors'
 /// residual about tenfold (0.50, 3.5e-2, 4.2e-3, 4.3e-4, 2.0e-5). Polishes that make such
-/// progress no longer count towards the three in a row after which a contact goes back to the
-/// fixed point (`PolishSchedule::seen`): it settles after the fourth (measured 24 outer
+/// progress no longer count towards the three after which a contact goes back to the fixed
+/// point (`PolishSchedule::seen`): it settles after the fourth (measured 24 outer
 /// iterations). Before, it went back after the third, whose fixed point expands at that
-/// solution, and was still moving after 80 outer iterations (checked: with the progress
-/// rule off this test fails there). The energy balance within the 1 %. ~10 s.
+/// solution, and was still moving after 80 outer iterations (checked: with the progress rule
+/// off this test fails there).
+///
+/// At 20 m/s and SRR 0.3 (L = 6) the first polish, at the 20th outer iteration, starts from a
+/// residual of 2.9 and fails. A finite contact whose polish failed was not polished again, and
+/// this one's fixed point wandered at 0.6-2.3 to the 80th outer iteration; it is now polished
+/// again 5, then 10, 20 outer iterations later (`POLISH_EVERY_FINITE`) and settles (measured
+/// 42 outer iterations; checked: unsettled after 80 without the retries). Both: the energy
+/// balance within the 1 %. ~25 s.
 #[test]
-fn a_fast_ball_polished_towards_its_film_end_settles() {
-    let sets = [
-        "grid.nx=97".to_string(),
-        "grid.ny=97".to_string(),
-        "motion.entrainment_speed=15.0".to_string(),
-        "motion.slide_to_roll=0.0".to_string(),
-        "lubricant.rheology={model=\"newtonian\"}".to_string(),
-    ];
-    let s = solve(&parse_str(SCAN_BALL_CASE, "scan_ball.toml", &sets).unwrap());
-    let err = settled(&s, "ball at 15 m/s, pure rolling");
-    let m = &s.summary;
-    println!(
-        "{} outer iterations, {} coupled Newton steps, balance {err:.1e}",
-        m.thermal_iterations.unwrap(),
-        m.thermal_newton_steps.unwrap()
-    );
-    assert!(m.thermal_newton_steps.unwrap() > 0, "not polished");
+fn fast_balls_polished_towards_their_film_end_settle() {
+    for (u, srr) in [("15.0", "0.0"), ("20.0", "0.3")] {
+        let sets = [
+            "grid.nx=97".to_string(),
+            "grid.ny=97".to_string(),
+            format!("motion.entrainment_speed={u}"),
+            format!("motion.slide_to_roll={srr}"),
+            "lubricant.rheology={model=\"newtonian\"}".to_string(),
+        ];
+        let s = solve(&parse_str(SCAN_BALL_CASE, "scan_ball.toml", &sets).unwrap());
+        let what = format!("ball at {u} m/s, SRR {srr}");
+        let err = settled(&s, &what);
+        let m = &s.summary;
+        println!(
+            "{what}: {} outer iterations, {} coupled Newton steps, balance {err:.1e}",
+            m.thermal_iterations.unwrap(),
+            m.thermal_newton_steps.unwrap()
+        );
+        assert!(m.thermal_newton_steps.unwrap() > 0, "{what}: not polished");
+    }
 }
 
 /// Swapping the surface speeds (SRR -> -SRR) of two identical bodies mirrors the thermal

@@ -164,8 +164,8 @@ const POLISH_WORTH: f64 = 15.0;
 const POLISH_LATE: usize = 20;
 
 /// After a polish of a line that failed the next waits this many outer iterations (a finite
-/// contact is not polished again: [`PolishSchedule::failed`]). After one that reached a
-/// solution which the next update did not find settled (the film's extent, frozen in the
+/// contact's [`POLISH_EVERY_FINITE`] and longer: [`PolishSchedule::failed`]). After one that
+/// reached a solution which the next update did not find settled (the film's extent, frozen in the
 /// polish, moved with its pressure) the next outer iteration polishes again. A polish that
 /// fails from a wandering fixed point may succeed from the state a few outer iterations on,
 /// and a line's costs ~0.1-1 s. Measured (2026-12-05, the scan's Eyring line on Barus's law at
@@ -194,16 +194,27 @@ const POLISH_EVERY: usize = 3;
 const POLISH_FACTOR_RESIDUAL: f64 = 0.1;
 const POLISH_INNER_RESIDUAL_K: f64 = 5.0;
 
-/// A contact polished this many times since its last failed polish, each time to a solution
-/// that the update after it did not find settled nor much nearer ([`POLISH_PROGRESS`]), is
-/// given back to the fixed point for the rest of the run: a guard against the two methods not solving quite the same equations. They did
-/// not where the limiting shear stress capped columns, before the fixed point's flux-driven
-/// columns matched their flux after the cap (`film_energy`'s `column_coefficients`): the line
-/// was polished again every outer iteration to `max_outer` (measured: the example line at
-/// p_h = 2 GPa, U = 1e-11, Lambda = 0.04 and SRR 0.2 to 1, unsettled after 80 outer
-/// iterations, where the fixed point alone settled in 20 to 37; with the old matching and this
-/// guard the thermal map's results were unchanged to the last digit).
+/// A contact polished this many times since its last failed polish, each time to a solution that
+/// the update after it did not find settled nor much nearer ([`POLISH_PROGRESS`]), is given back to
+/// the fixed point for the rest of the run: a guard against the two methods not solving quite the
+/// same equations. They did not where the limiting shear stress capped columns, before the fixed
+/// point's flux-driven columns matched their flux after the cap (`film_energy`'s
+/// `column_coefficients`): the line was polished again every outer iteration to `max_outer`
+/// (measured: the example line at p_h = 2 GPa, U = 1e-11, Lambda = 0.04 and SRR 0.2 to 1, unsettled
+/// after 80 outer iterations, where the fixed point alone settled in 20 to 37; with the old
+/// matching and this guard the thermal map's results were unchanged to the last digit).
 const POLISH_RUN: usize = 3;
+
+/// A finite contact (a ball, a finite roller) whose polish failed is polished again this many
+/// outer iterations later, and twice as long after each further failure (5, 10, 20: at most
+/// three more tries in the default 80 outer iterations after a first failure at the 20th). A
+/// failed 2D polish costs up to [`super::thermal_newton`]'s 100 GMRES iterations a step, each
+/// a film solve of every row (~2 s on a 97^2 ball, ~12 s at 256 x 256). Measured (2026-12-05,
+/// the robustness scan's steel ball at 20 m/s and SRR 0.3, L = 6, 97^2): its polish at the
+/// 20th outer iteration, from a factors' residual of 2.9, failed; never polished again (the
+/// rule before), its fixed point wandered at 0.6-2.3 to the 80th outer iteration. With the
+/// retries it settles in 42 outer iterations.
+const POLISH_EVERY_FINITE: usize = 5;
 
 /// A polish that reached a solution after which the update found the factors' residual at
 /// most this fraction of the residual the polish started from made progress, and is not
@@ -213,7 +224,12 @@ const POLISH_RUN: usize = 3;
 /// of the outlet spike (the residual's cell moving diagonally (79, 42) -> (80, 43) -> (81, 44)
 /// -> (82, 45) of 97^2), each polish lowering the residual about tenfold (0.50 -> 3.5e-2 ->
 /// 4.2e-3 -> 4.3e-4); handed back to the fixed point there, whose map expands at that
-/// solution, it diverged (residual 1.7 by the 32nd) and did not settle in 80.
+/// solution, it diverged (residual 1.7 by the 32nd) and did not settle in 80. Its polishes'
+/// ratios were 0.05-0.12: 0.3 leaves room for a slower approach and still asks for a
+/// reduction a fixed point that merely wanders does not make twice running (not tuned: no
+/// other value was tried). Only a residual still above the factors' stop counts as progress,
+/// so that polishes not counted are at most log(r0 / stop) / log(1 / 0.3) in a row (8 from
+/// a residual of 1 to the default stop of 1e-4).
 const POLISH_PROGRESS: f64 = 0.3;
 
 /// When a contact's fixed point is handed to Newton's method on the coupled problem
@@ -222,9 +238,10 @@ const POLISH_PROGRESS: f64 = 0.3;
 /// one at any factors' residual; [`POLISH_INNER_RESIDUAL_K`]); again
 /// at the next outer iteration after a polish that reached a solution (the film's extent,
 /// frozen in the polish, may have moved with its pressure, and the update after it shows
-/// where), [`POLISH_EVERY`] outer iterations after one that failed, and never again after
-/// [`POLISH_RUN`] polishes in a row that reached a solution the fixed point did not then
-/// find settled nor much nearer ([`POLISH_PROGRESS`]).
+/// where), [`POLISH_EVERY`] outer iterations after one that failed ([`POLISH_EVERY_FINITE`]
+/// and longer for a finite contact), and never again after [`POLISH_RUN`] polishes since the
+/// last failed one that reached a solution the fixed point did not then find settled nor much
+/// nearer ([`POLISH_PROGRESS`]).
 #[derive(Debug, Clone)]
 struct PolishSchedule {
     /// the first outer iteration that may polish
@@ -233,11 +250,14 @@ struct PolishSchedule {
     /// or the run would have stopped)
     repolish: bool,
     /// polishes since the last failed one that reached a solution without making progress
-    /// (see [`POLISH_RUN`], [`POLISH_PROGRESS`])
+    /// (see [`POLISH_RUN`], [`POLISH_PROGRESS`]; not necessarily one after another: polishes
+    /// that made progress may come between them)
     reached_in_a_row: usize,
     /// the factors' residual the last polish that reached a solution started from, until the
     /// update after it is seen ([`PolishSchedule::seen`])
     started_from: Option<f64>,
+    /// failed polishes of a finite contact so far (see [`POLISH_EVERY_FINITE`])
+    finite_failures: u32,
 }
 
 impl PolishSchedule {
@@ -247,6 +267,7 @@ impl PolishSchedule {
             repolish: false,
             reached_in_a_row: 0,
             started_from: None,
+            finite_failures: 0,
         }
     }
 
@@ -294,27 +315,30 @@ impl PolishSchedule {
         self.started_from = Some(from);
     }
 
-    /// The factors' residual of an outer iteration's update: after a polish that reached a
-    /// solution, that polish is not counted in the run of [`POLISH_RUN`] when the residual
-    /// fell to at most [`POLISH_PROGRESS`] of the one it started from.
-    fn seen(&mut self, residual: f64) {
+    /// The factors' residual of an outer iteration's update (`factor_tol` its stop): after a
+    /// polish that reached a solution, that polish is not counted towards [`POLISH_RUN`] when
+    /// the residual fell to at most [`POLISH_PROGRESS`] of the one it started from and is
+    /// still above `factor_tol` (below it the run stops unless something else holds it: no
+    /// progress a polish can make).
+    fn seen(&mut self, residual: f64, factor_tol: f64) {
         if let Some(from) = self.started_from.take() {
-            if residual <= POLISH_PROGRESS * from {
-                self.reached_in_a_row -= 1;
+            if residual > factor_tol && residual <= POLISH_PROGRESS * from {
+                self.reached_in_a_row = self.reached_in_a_row.saturating_sub(1);
             }
         }
     }
 
     /// The polish at outer iteration `outer` failed (the fixed point goes on from its own
-    /// iterate). A finite contact (`finite`) is not polished again in this run: its polish
-    /// costs tens of outer iterations' worth of film solves when it fails (GMRES to its
-    /// limit), and one that failed from a fixed point slow at its 20th outer iteration was
-    /// not seen to succeed later (none failed on the robustness scan; not measured further).
+    /// iterate). A line is polished again [`POLISH_EVERY`] outer iterations later, a finite
+    /// contact (`finite`) [`POLISH_EVERY_FINITE`] later, twice as long after each further
+    /// failure.
     fn failed(&mut self, outer: usize, finite: bool) {
         self.reached_in_a_row = 0;
         self.started_from = None;
         self.next = if finite {
-            usize::MAX
+            let wait = POLISH_EVERY_FINITE << self.finite_failures.min(20);
+            self.finite_failures += 1;
+            outer.saturating_add(wait)
         } else {
             outer + POLISH_EVERY
         };
@@ -338,8 +362,10 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// to 3.2 but not at 6.8, where the outer fixed point keeps moving by tenths of a kelvin; with
 /// Newton's method on the coupled problem ([`ThermalParams::coupled_newton`]) every run of that
 /// map settles up to L = 13 and all but SRR 1 at L = 22, but the limit stays: finite rollers
-/// and balls are handed to it only late (from the 20th outer iteration), and it was not
-/// measured on them at high L. The
+/// and balls are handed to it only late (from the 20th outer iteration), and on them it was
+/// measured at high L only on the robustness scan's steel ball (7-20 m/s, L up to 6, at SRR
+/// 0, 0.3 and 1: all settle but 20 m/s at SRR 0.3, the pure-rolling ones at 15 and 20 m/s
+/// through the polish; docs/thermal.md, "Fast balls"). The
 /// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
 /// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
 /// it did not settle in 80). A run, steady or transient, that fails above it says so in its
@@ -567,7 +593,7 @@ fn run(
         contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
         residual = factor_residual(grid, &h_si, &factors, &fresh);
         residuals.push(residual);
-        polishing.seen(residual);
+        polishing.seen(residual, thermal.factor_tolerance);
         // how strongly the temperatures answer the factors, from this outer iteration and the
         // last (see mixing_parameter)
         let contraction = last_pair
@@ -1260,10 +1286,10 @@ mod tests {
     }
 
     /// The guard POLISH_RUN: a line whose polishes keep reaching solutions that the fixed point
-    /// does not then find settled is polished POLISH_RUN times in a row and then left to the
-    /// fixed point for the rest of the run; a failed polish starts the count again, after
-    /// POLISH_EVERY outer iterations. The schedule's other conditions: not before POLISH_FROM,
-    /// not at the last outer iteration, not while far (the factors' residual above
+    /// does not then find settled nor much nearer is polished POLISH_RUN times in a row and then
+    /// left to the fixed point for the rest of the run; a failed polish starts the count again,
+    /// after POLISH_EVERY outer iterations. The schedule's other conditions: not before
+    /// POLISH_FROM, not at the last outer iteration, not while far (the factors' residual above
     /// POLISH_FACTOR_RESIDUAL, the temperature solve's own above POLISH_INNER_RESIDUAL_K), not
     /// while the fixed point is fast.
     #[test]
@@ -1384,7 +1410,7 @@ mod tests {
                     s.reached(outer, from);
                     // the next update
                     hist.push(gain * from);
-                    s.seen(gain * from);
+                    s.seen(gain * from, tol);
                 }
                 assert_eq!(count, polished, "gain {gain}, finite {finite}");
             }
@@ -1393,8 +1419,13 @@ mod tests {
         let mut s = PolishSchedule::new();
         s.reached(POLISH_LATE, 0.2);
         s.failed(POLISH_LATE + 1, false);
-        s.seen(1e-3);
+        s.seen(1e-3, 1e-4);
         assert_eq!(s.reached_in_a_row, 0);
+        // a residual that fell below the stop is no progress a polish can make
+        let mut s = PolishSchedule::new();
+        s.reached(POLISH_LATE, 0.2);
+        s.seen(5e-5, 1e-4);
+        assert_eq!(s.reached_in_a_row, 1);
     }
 
     /// A finite contact is polished only from POLISH_LATE on, and only when slow there (its
@@ -1431,8 +1462,33 @@ mod tests {
         let mut closing = fast.clone();
         closing.push(fast[POLISH_LATE - 1] * 0.3);
         assert!(s.due(POLISH_LATE + 1, max, &closing, tol, inner, true));
-        // never again after a failed one
-        s.failed(POLISH_LATE + 1, true);
-        assert!((POLISH_LATE + 2..max).all(|o| !s.due(o, max, &slow[..o], tol, inner, true)));
+        // after a failed one, POLISH_EVERY_FINITE outer iterations later, then twice as long
+        // after each further failure (a fixed point that keeps wandering)
+        let slow = vec![0.5; max];
+        let mut failed_at = POLISH_LATE + 1;
+        for wait in [1, 2, 4, 8].map(|k| k * POLISH_EVERY_FINITE) {
+            s.failed(failed_at, true);
+            let next = failed_at + wait;
+            assert!(
+                (failed_at + 1..next.min(max)).all(|o| !s.due(
+                    o,
+                    max,
+                    &slow[..o],
+                    tol,
+                    inner,
+                    true
+                )),
+                "polished again before {next}"
+            );
+            if next >= max {
+                assert!((failed_at + 1..max).all(|o| !s.due(o, max, &slow[..o], tol, inner, true)));
+                break;
+            }
+            assert!(
+                s.due(next, max, &slow[..next], tol, inner, true),
+                "at {next}"
+            );
+            failed_at = next;
+        }
     }
 }
