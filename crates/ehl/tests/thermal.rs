@@ -1463,8 +1463,9 @@ fn a_fast_ball_cools_its_oil_leaving_the_spike_and_settles() {
 /// At 20 m/s and SRR 0.3 (L = 6) the first polish, at the 20th outer iteration, starts from a
 /// residual of 2.9 and fails. A finite contact whose polish failed was not polished again, and
 /// this one's fixed point wandered at 0.6-2.3 to the 80th outer iteration; it is now polished
-/// again 5, then 10, 20 outer iterations later (`POLISH_EVERY_FINITE`) and settles (measured
-/// 42 outer iterations; checked: unsettled after 80 without the retries). Both: the energy
+/// again 5 outer iterations after a failure, twice as long after each further one
+/// (`POLISH_EVERY_FINITE`), and settles (measured 42 outer iterations; checked: unsettled
+/// after 80 without the retries). Both: the energy
 /// balance within the 1 %. ~25 s.
 #[test]
 fn fast_balls_polished_towards_their_film_end_settle() {

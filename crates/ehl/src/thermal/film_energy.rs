@@ -998,7 +998,8 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
 ///   10-20 m/s; at 10 and 15 m/s with SRR 0.3 its film iteration left residuals of 5-100 K at
 ///   the cells leaving the spike and the fixed point did not settle (at 15 m/s in pure
 ///   rolling the oil there was 40-80 K below the walls in some outer iterations and not in
-///   others); with this choice both settle (15 m/s in pure rolling and 20 m/s still do not).
+///   others); with this choice both settle (15 m/s in pure rolling and 20 m/s settle since
+///   2026-12-05 through the coupled polish, docs/thermal.md "Polished until it settles").
 ///   Without thermal expansion (no compression work) the pure-rolling ball at 15 m/s
 ///   settled.
 ///
