@@ -569,14 +569,14 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     let (mut stack, mut heap) = ([0.0f64; 16 * 16], Vec::new());
     let work = scratch(&mut stack, &mut heap, 16 * n);
     let (ln_eta, rest) = work.split_at_mut(n);
-    let (eta_eff, rest) = rest.split_at_mut(n);
+    let (mut eta_eff, rest) = rest.split_at_mut(n);
     let (mut y, rest) = rest.split_at_mut(n);
     let (mut r, rest) = rest.split_at_mut(n);
     let (mut slope, rest) = rest.split_at_mut(n);
     let (mut yp, rest) = rest.split_at_mut(n);
     let (mut rp, rest) = rest.split_at_mut(n);
     let (mut sp, rest) = rest.split_at_mut(n);
-    let (scratch, rest) = rest.split_at_mut(n);
+    let (mut scratch, rest) = rest.split_at_mut(n);
     let (dta, rest) = rest.split_at_mut(n);
     let (dtb, rest) = rest.split_at_mut(n);
     let (tau_x, rest) = rest.split_at_mut(n);
@@ -623,11 +623,10 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
     residual(y, eta_eff, r, slope)?;
     let mut res = norm(r);
     let mut iterations = 0;
+    // (eta_eff holds exp(y) from here on: the residual's evaluation at y wrote it, and an
+    // accepted trial point's is swapped in with it)
     while res > opts.tol && iterations < opts.max_iter {
         iterations += 1;
-        for k in 0..n {
-            eta_eff[k] = y[k].exp();
-        }
         let (ta, tb, f0, _) = col.wall_stress(rule, eta_eff);
         for j in 0..n {
             let e = rule.weights[j] / eta_eff[j];
@@ -660,6 +659,7 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
             };
             if rn < res || (lambda < 1e-3 && rn.is_finite()) {
                 std::mem::swap(&mut y, &mut yp);
+                std::mem::swap(&mut eta_eff, &mut scratch);
                 std::mem::swap(&mut r, &mut rp);
                 std::mem::swap(&mut slope, &mut sp);
                 res = rn;
@@ -675,9 +675,6 @@ pub fn shear_thinning_profile_from<L: FilmLaws + ?Sized>(
         if stalled {
             break;
         }
-    }
-    for k in 0..n {
-        eta_eff[k] = y[k].exp();
     }
     let profile = velocity_profile(rule, col, eta_eff, rho)?;
     Ok(ShearThinningProfile {
