@@ -1465,8 +1465,14 @@ fn a_fast_ball_cools_its_oil_leaving_the_spike_and_settles() {
 /// this one's fixed point wandered at 0.6-2.3 to the 80th outer iteration; it is now polished
 /// again 5 outer iterations after a failure, twice as long after each further one
 /// (`POLISH_EVERY_FINITE`), and settles (measured 42 outer iterations; checked: unsettled
-/// after 80 without the retries). Both: the energy
-/// balance within the 1 %. ~25 s.
+/// after 80 without the retries). Both: the energy balance within the 1 %.
+///
+/// And the polished solution is a thermal film, not just a settled one: in pure rolling its
+/// central film lies below the isothermal one (inlet heating thins it) and above the
+/// isothermal one times Murch & Wilson's factor 1 / (1 + 0.254 L^0.62) (0.650 at L = 3.37):
+/// our reduction is weaker than the classical fits' wherever we compared them (docs/thermal.md,
+/// "Known disagreement": 0.8 of it on the line from L = 2.5 to 10). Measured 1.358 um against
+/// 1.682 um isothermal, a ratio of 0.807. ~25 s.
 #[test]
 fn fast_balls_polished_towards_their_film_end_settle() {
     for (u, srr) in [("15.0", "0.0"), ("20.0", "0.3")] {
@@ -1477,7 +1483,8 @@ fn fast_balls_polished_towards_their_film_end_settle() {
             format!("motion.slide_to_roll={srr}"),
             "lubricant.rheology={model=\"newtonian\"}".to_string(),
         ];
-        let s = solve(&parse_str(SCAN_BALL_CASE, "scan_ball.toml", &sets).unwrap());
+        let case = parse_str(SCAN_BALL_CASE, "scan_ball.toml", &sets).unwrap();
+        let s = solve(&case);
         let what = format!("ball at {u} m/s, SRR {srr}");
         let err = settled(&s, &what);
         let m = &s.summary;
@@ -1487,6 +1494,22 @@ fn fast_balls_polished_towards_their_film_end_settle() {
             m.thermal_newton_steps.unwrap()
         );
         assert!(m.thermal_newton_steps.unwrap() > 0, "{what}: not polished");
+        if srr == "0.0" {
+            let l = ehl::reference::check::case_thermal_loading(&case).unwrap();
+            let mw = ehl::reference::thermal::murch_wilson(l);
+            let mut iso_case = case.clone();
+            iso_case.thermal = None;
+            let iso = solve(&iso_case);
+            assert!(iso.summary.converged, "{what}, isothermal");
+            let r = m.central_film_m.unwrap() / iso.summary.central_film_m.unwrap();
+            println!(
+                "{what}: L {l:.2}, thermal / isothermal central film {r:.4}, Murch-Wilson {mw:.4}"
+            );
+            assert!(
+                r < 1.0 && r > mw,
+                "{what}: film ratio {r}, Murch-Wilson {mw}"
+            );
+        }
     }
 }
 
