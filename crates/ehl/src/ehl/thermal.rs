@@ -365,10 +365,10 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// and balls are handed to it only late (from the 20th outer iteration), and on them it was
 /// measured at high L only on the robustness scan's steel ball (7-20 m/s, L up to 6, at SRR
 /// 0, 0.3 and 1: all 12 settle, the pure-rolling ones at 15 and 20 m/s and 20 m/s at SRR 0.3
-/// through the polish; docs/thermal.md, "Polished until it settles"). One case below it is
-/// known not to settle (found 2026-12-05, not fixed): the glass-disc ball example at 5 m/s
-/// and SRR 2 (L = 2.3), whose film settles to 1e-8 while one edge-row cell's factor keeps a
-/// two-cycle (docs/thermal.md, "Left open"). The
+/// through the polish; docs/thermal.md, "Polished until it settles"). The glass-disc ball
+/// example at 5 m/s and SRR 2 (L = 2.3), below it, did not settle until a row's film end was
+/// held against the Reynolds solve's noise ([`crate::thermal::contact::PRESSURISED_FRACTION`];
+/// 27 outer iterations). The
 /// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
 /// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
 /// it did not settle in 80). A run, steady or transient, that fails above it says so in its
