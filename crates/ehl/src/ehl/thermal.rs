@@ -368,10 +368,9 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// through the polish; docs/thermal.md, "Polished until it settles"). The glass-disc ball
 /// example at 5 m/s and SRR 2 (L = 2.3), below it, did not settle until a row's film end was
 /// held against the Reynolds solve's noise ([`crate::thermal::contact::PRESSURISED_FRACTION`];
-/// 27 outer iterations). The
-/// thesis pit case on the finite rollers (L = 5.3, SRR 0.02) settles at 128 x 128, and at
-/// 256 x 256 since the film carries heat along y (23 outer iterations; without the side flow
-/// it did not settle in 80). A run, steady or transient, that fails above it says so in its
+/// 27 outer iterations). The thesis pit case on the finite rollers (L = 5.3, SRR 0.02)
+/// settles at 128 x 128, and at 256 x 256 since the film carries heat along y (23 outer
+/// iterations; without the side flow it did not settle in 80). A run, steady or transient, that fails above it says so in its
 /// reason ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
 pub const CONVERGED_THERMAL_LOADING: f64 = 2.5;
 
