@@ -474,6 +474,11 @@ impl ThermalContact {
     }
 
     /// Whether an update has solved the film on some cell (else there are no temperatures).
+    /// The cells the last update solved a film for (false everywhere before the first).
+    pub fn film_cells(&self) -> &[bool] {
+        &self.active
+    }
+
     pub fn solved(&self) -> bool {
         self.active.iter().any(|&a| a)
     }
