@@ -10,9 +10,9 @@
 //!    (Yang & Wen 1990) as per-cell factors on the isothermal ones
 //!    (`super::system::ThermalFactors`); the first iteration takes them whole, the later ones
 //!    Anderson-mix them with the last iterates ([`ThermalParams::anderson`]), damped unless the
-//!    coupling has shown itself weak (`mixing_parameter`); a cell solved for the first time
-//!    takes its own whole (`take_new_cells`), and the cells past a row's film copy its last
-//!    cell's (`copy_past_film`);
+//!    coupling has shown itself weak (`mixing_parameter`); from the second on, a cell not
+//!    solved at the update before takes its own whole (`take_new_cells`), and the cells past a
+//!    row's film copy its last cell's (`copy_past_film`);
 //! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
 //!    from the last solution (from the second outer iteration on, its first linear solve to
 //!    [`super::ETA_WARM`]), the factors frozen, to a tolerance no tighter than the factors are
@@ -371,9 +371,10 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// example at 5 m/s and SRR 2 (L = 2.3), below it, did not settle until a row's film end was
 /// held against the Reynolds solve's noise ([`crate::thermal::contact::PRESSURISED_FRACTION`];
 /// 27 outer iterations). The thesis pit case on the finite rollers (L = 5.3, SRR 0.02)
-/// settles at 128 x 128, and at 256 x 256 since the film carries heat along y (23 outer
-/// iterations; without the side flow it did not settle in 80). A run, steady or transient, that fails above it says so in its
-/// reason ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
+/// settles at 128 x 128, and at 256 x 256 since the film carries heat along y (without the
+/// side flow it did not settle in 80; 27 outer iterations, 19 since the cells past a row's film
+/// copy its factors, `copy_past_film`). A run, steady or transient, that fails above it says
+/// so in its reason ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
 pub const CONVERGED_THERMAL_LOADING: f64 = 2.5;
 
 /// The thermal solution: the EHL fields (viscosity and density at the mid-film temperature),
@@ -1071,12 +1072,14 @@ fn relax(factors: &mut ThermalFactors, base: &ThermalFactors, fresh: &ThermalFac
 }
 
 /// A cell the last update solved a film for and the one before did not (`now` and not
-/// `before`) takes its fresh factors `fresh` whole, not mixed: its factors in use were not its
-/// own but a copy of its row's last solved cell's (past a row's film the cells copy it), or
-/// the isothermal 1. When a row's film grows by a cell at its outlet end, the mixing took the
-/// new cell from that copy to its own factor at ~0.7 an outer iteration (the thermal pit's
-/// steady start at 256^2, cell (201, 98): factors' residual 2.0e-3 -> 1.8e-4 over the 17th to
-/// 23rd outer iterations while every pressurised cell was within 1.2e-4).
+/// `before`: new, or back after a gap) takes its fresh factors `fresh` whole, not mixed: its
+/// factors in use were not its own but a copy of its row's last solved cell's (past a row's
+/// film the cells copy it), or the isothermal 1. Traced on the thermal pit's steady start at
+/// 256^2: cell (201, 98) joined its row's film at the 12th outer iteration with the copy 0.9276
+/// in use against its own 0.9523, and it and the copies past it crept up at a ratio of ~0.7
+/// an outer iteration (the factors' residual 2.0e-3 -> 1.8e-4 over the 17th to 23rd). With
+/// this alone the cell settled at once but its copies still crept (27 outer iterations, as
+/// before); with [`copy_past_film`] too, 19.
 fn take_new_cells(
     factors: &mut ThermalFactors,
     fresh: &ThermalFactors,
@@ -1093,11 +1096,12 @@ fn take_new_cells(
 
 /// Past each row's last cell with a film (`film`), the cells with material (`material`) take
 /// that cell's factors, as the fresh factors do (`ThermalContact::reynolds_factors`): they are
-/// not unknowns of their own. Mixed as if they were, each kept its own history, and where a
-/// row's film had grown and shrunk by a cell the copies lagged the last cell's factors and
-/// crept towards them at ~0.7 an outer iteration (the thermal pit's steady start at 256^2, cell
-/// (202, 98): factors' residual 2.0e-3 -> 1.8e-4 over the 17th to 23rd outer iterations while
-/// every cell with a film was within 1.2e-4).
+/// not unknowns of their own. Mixed as if they were, each kept its own history and lagged the
+/// cell it copies where the row's film had grown or shrunk: on the thermal pit's steady start
+/// at 256^2 with [`take_new_cells`] alone, the copy (202, 98) held 0.9504 at the 17th outer
+/// iteration against the 0.9523 of the cell it copies and crept up at a ratio of ~0.7 an
+/// outer iteration, the largest factors' residual for seven outer iterations (27 in all; 19
+/// with both).
 fn copy_past_film(
     grid: crate::grid::Grid,
     factors: &mut ThermalFactors,
@@ -1109,11 +1113,15 @@ fn copy_past_film(
         let Some(last) = row.clone().rev().find(|&k| film[k]) else {
             continue;
         };
-        for k in last + 1..row.end {
-            if material[k] {
-                factors.flow[k] = factors.flow[last];
-                factors.couette[k] = factors.couette[last];
-            }
+        let (flow, couette) = (factors.flow[last], factors.couette[last]);
+        let past = last + 1..row.end;
+        let cells = factors.flow[past.clone()]
+            .iter_mut()
+            .zip(&mut factors.couette[past.clone()])
+            .zip(&material[past]);
+        for ((f, c), _) in cells.filter(|(_, &m)| m) {
+            *f = flow;
+            *c = couette;
         }
     }
 }
@@ -1211,8 +1219,9 @@ mod tests {
         }
     }
 
-    /// Past a row's last cell with a film, the cells with material take its factors; cells
-    /// without material and rows without a film keep theirs.
+    /// Past a row's last cell with a film, the cells with material take its factors, also
+    /// beyond a cell without material (as the fresh factors do); cells without material and
+    /// rows without a film keep theirs.
     #[test]
     fn the_cells_past_a_film_copy_its_last_cell() {
         let grid = Grid::new(5, 3, 0.0, 1.0, 0.0, 1.0);
@@ -1226,28 +1235,30 @@ mod tests {
         );
         let t = true;
         let o = false;
-        // row 0: film on cells 1-2; row 1: film on cells 0-3, cell 4 without material; row 2:
+        // row 0: film on cells 1-2; row 1: film on cells 0-1, cell 2 without material; row 2:
         // no film
-        let film = [o, t, t, o, o, t, t, t, t, o, o, o, o, o, o];
+        let film = [o, t, t, o, o, t, t, o, o, o, o, o, o, o, o];
         let mut material = [true; 15];
-        material[9] = false;
+        material[7] = false;
         copy_past_film(grid, &mut f, &film, &material);
         assert_eq!(&f.flow[..5], &[1.1, 1.2, 1.3, 1.3, 1.3]);
         assert_eq!(&f.couette[..5], &[0.1, 0.2, 0.3, 0.3, 0.3]);
-        assert_eq!(&f.flow[5..10], &[2.1, 2.2, 2.3, 2.4, 2.5]);
+        assert_eq!(&f.flow[5..10], &[2.1, 2.2, 2.3, 2.2, 2.2]);
+        assert_eq!(&f.couette[5..10], &[0.6, 0.7, 0.8, 0.7, 0.7]);
         assert_eq!(&f.flow[10..], &[3.1, 3.2, 3.3, 3.4, 3.5]);
         assert_eq!(&f.couette[10..], &[1.1, 1.2, 1.3, 1.4, 1.5]);
     }
 
-    /// A cell with a film now and none before takes its fresh factors whole; the others keep
-    /// the mixed ones.
+    /// A cell with a film now and none before takes its fresh factors whole; the others (a
+    /// film before and now, neither, or before only) keep the mixed ones.
     #[test]
     fn a_cell_solved_for_the_first_time_takes_its_fresh_factors() {
-        let mut f = factors(&[1.0, 1.0, 1.0], &[2.0, 2.0, 2.0]);
-        let fresh = factors(&[1.5, 1.6, 1.7], &[2.5, 2.6, 2.7]);
-        take_new_cells(&mut f, &fresh, &[true, false, false], &[true, true, false]);
-        assert_eq!(f.flow, [1.0, 1.6, 1.0]);
-        assert_eq!(f.couette, [2.0, 2.6, 2.0]);
+        let mut f = factors(&[1.0; 4], &[2.0; 4]);
+        let fresh = factors(&[1.5, 1.6, 1.7, 1.8], &[2.5, 2.6, 2.7, 2.8]);
+        let before = [true, false, false, true];
+        take_new_cells(&mut f, &fresh, &before, &[true, true, false, false]);
+        assert_eq!(f.flow, [1.0, 1.6, 1.0, 1.0]);
+        assert_eq!(f.couette, [2.0, 2.6, 2.0, 2.0]);
     }
 
     #[test]

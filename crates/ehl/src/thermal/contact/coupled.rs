@@ -411,13 +411,7 @@ mod tests {
         contact.options.line.tol = 1e-9;
         contact.options.line.max_iter = 60;
         let n = grid.len();
-        let (mut p, mut h) = (vec![0.0; n], vec![0.0; n]);
-        for k in 0..n {
-            let (x, y) = (grid.x(k % grid.nx), grid.y(k / grid.nx));
-            let s = 1.0 - (x * x + y * y) / (a * a);
-            p[k] = ph * s.max(0.0);
-            h[k] = hc + (x * x + y * y) / (2.0 * r);
-        }
+        let (p, h) = crate::thermal::contact::tests::hertzian_fields(grid, a, ph, hc, r);
         let active = vec![true; n];
         let (mut flow, mut couette) = (vec![1.0; n], vec![1.0; n]);
         let mut change = f64::INFINITY;
