@@ -12,7 +12,8 @@
 //!    Anderson-mix them with the last iterates ([`ThermalParams::anderson`]), damped unless the
 //!    coupling has shown itself weak (`mixing_parameter`); from the second on, a cell not
 //!    solved at the update before takes its own whole (`take_new_cells`), and the cells past a
-//!    row's film copy its last cell's (`copy_past_film`);
+//!    row's film copy its last cell's
+//!    ([`copy_past_film`](crate::thermal::contact::copy_past_film));
 //! 3. Newton-Krylov solves the Reynolds equation with the load balance again, warm-started
 //!    from the last solution (from the second outer iteration on, its first linear solve to
 //!    [`super::ETA_WARM`]), the factors frozen, to a tolerance no tighter than the factors are
@@ -43,7 +44,7 @@ use super::{
     ETA_MAX, ETA_WARM,
 };
 use crate::linalg::anderson::Anderson;
-use crate::thermal::contact::CONVERGED_FILM_RATIO;
+use crate::thermal::contact::{copy_past_film, CONVERGED_FILM_RATIO};
 use crate::thermal::ThermalContact;
 
 /// Controls of the thermal fixed point.
@@ -698,7 +699,15 @@ fn run(
         }
         if outer > 1 {
             take_new_cells(&mut factors, &fresh, &solved_before, contact.film_cells());
-            copy_past_film(grid, &mut factors, contact.film_cells(), &sys.active);
+            // past each row's film the factors in use copy its last cell's, as the fresh ones
+            // do: the copies are not unknowns of their own. Mixed as if they were, each kept its
+            // own history and lagged the cell it copies where the row's film had grown or
+            // shrunk: on the thermal pit's steady start at 256^2 with take_new_cells alone, the
+            // copy (202, 98) held 0.9504 at the 17th outer iteration against the 0.9523 of the
+            // cell it copies and crept up at a ratio of ~0.7 an outer iteration, the largest
+            // factors' residual for seven outer iterations (27 in all; 19 with both)
+            let (flow, couette) = (&mut factors.flow, &mut factors.couette);
+            copy_past_film(grid, flow, couette, contact.film_cells(), &sys.active);
         }
         sys.thermal = Some(factors.clone());
         sys.eval(&mut st);
@@ -1079,7 +1088,7 @@ fn relax(factors: &mut ThermalFactors, base: &ThermalFactors, fresh: &ThermalFac
 /// in use against its own 0.9523, and it and the copies past it crept up at a ratio of ~0.7
 /// an outer iteration (the factors' residual 2.0e-3 -> 1.8e-4 over the 17th to 23rd). With
 /// this alone the cell settled at once but its copies still crept (27 outer iterations, as
-/// before); with [`copy_past_film`] too, 19.
+/// before); with the copies past the film copying too (`copy_past_film`), 19.
 fn take_new_cells(
     factors: &mut ThermalFactors,
     fresh: &ThermalFactors,
@@ -1090,38 +1099,6 @@ fn take_new_cells(
         if now[k] && !before[k] {
             factors.flow[k] = fresh.flow[k];
             factors.couette[k] = fresh.couette[k];
-        }
-    }
-}
-
-/// Past each row's last cell with a film (`film`), the cells with material (`material`) take
-/// that cell's factors, as the fresh factors do (`ThermalContact::reynolds_factors`): they are
-/// not unknowns of their own. Mixed as if they were, each kept its own history and lagged the
-/// cell it copies where the row's film had grown or shrunk: on the thermal pit's steady start
-/// at 256^2 with [`take_new_cells`] alone, the copy (202, 98) held 0.9504 at the 17th outer
-/// iteration against the 0.9523 of the cell it copies and crept up at a ratio of ~0.7 an
-/// outer iteration, the largest factors' residual for seven outer iterations (27 in all; 19
-/// with both).
-fn copy_past_film(
-    grid: crate::grid::Grid,
-    factors: &mut ThermalFactors,
-    film: &[bool],
-    material: &[bool],
-) {
-    for j in 0..grid.ny {
-        let row = j * grid.nx..(j + 1) * grid.nx;
-        let Some(last) = row.clone().rev().find(|&k| film[k]) else {
-            continue;
-        };
-        let (flow, couette) = (factors.flow[last], factors.couette[last]);
-        let past = last + 1..row.end;
-        let cells = factors.flow[past.clone()]
-            .iter_mut()
-            .zip(&mut factors.couette[past.clone()])
-            .zip(&material[past]);
-        for ((f, c), _) in cells.filter(|(_, &m)| m) {
-            *f = flow;
-            *c = couette;
         }
     }
 }
@@ -1217,36 +1194,6 @@ mod tests {
             flow: flow.to_vec(),
             couette: couette.to_vec(),
         }
-    }
-
-    /// Past a row's last cell with a film, the cells with material take its factors, also
-    /// beyond a cell without material (as the fresh factors do); cells without material and
-    /// rows without a film keep theirs.
-    #[test]
-    fn the_cells_past_a_film_copy_its_last_cell() {
-        let grid = Grid::new(5, 3, 0.0, 1.0, 0.0, 1.0);
-        let mut f = factors(
-            &[
-                1.1, 1.2, 1.3, 1.4, 1.5, 2.1, 2.2, 2.3, 2.4, 2.5, 3.1, 3.2, 3.3, 3.4, 3.5,
-            ],
-            &[
-                0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5,
-            ],
-        );
-        let t = true;
-        let o = false;
-        // row 0: film on cells 1-2; row 1: film on cells 0-1, cell 2 without material; row 2:
-        // no film
-        let film = [o, t, t, o, o, t, t, o, o, o, o, o, o, o, o];
-        let mut material = [true; 15];
-        material[7] = false;
-        copy_past_film(grid, &mut f, &film, &material);
-        assert_eq!(&f.flow[..5], &[1.1, 1.2, 1.3, 1.3, 1.3]);
-        assert_eq!(&f.couette[..5], &[0.1, 0.2, 0.3, 0.3, 0.3]);
-        assert_eq!(&f.flow[5..10], &[2.1, 2.2, 2.3, 2.2, 2.2]);
-        assert_eq!(&f.couette[5..10], &[0.6, 0.7, 0.8, 0.7, 0.7]);
-        assert_eq!(&f.flow[10..], &[3.1, 3.2, 3.3, 3.4, 3.5]);
-        assert_eq!(&f.couette[10..], &[1.1, 1.2, 1.3, 1.4, 1.5]);
     }
 
     /// A cell with a film now and none before takes its fresh factors whole; the others (a

@@ -1194,23 +1194,10 @@ impl ThermalContact {
                 }
             }
         }
-        let nx = self.grid.nx;
-        for j in 0..self.grid.ny {
-            let row = j * nx..(j + 1) * nx;
-            let Some(last) = row
-                .clone()
-                .rev()
-                .find(|&k| active[k] && profile_of(k).is_some())
-            else {
-                continue;
-            };
-            for k in last + 1..row.end {
-                if active[k] {
-                    flow[k] = flow[last];
-                    couette[k] = couette[last];
-                }
-            }
-        }
+        let film: Vec<bool> = (0..self.grid.len())
+            .map(|k| active[k] && profile_of(k).is_some())
+            .collect();
+        copy_past_film(self.grid, flow, couette, &film, active);
     }
 
     /// Viscosity (Pa s, low-shear, at the mid-film temperature) and density (kg/m^3, mean
@@ -1451,6 +1438,37 @@ fn row_side_mass_flux(
     }
 }
 
+/// Past each grid row's last cell with a film (`film`), the cells with material (`material`)
+/// take that cell's Reynolds factors (`flow`, `couette`): downstream of the film's end the film
+/// is cavitated and not solved (see [`ThermalContact::update`]), so the cells there carry the
+/// factors of the oil leaving it. The fresh factors of an update are copied so
+/// ([`ThermalContact::reynolds_factors`]), and the steady driver copies its mixed ones the same
+/// way (`crate::ehl::thermal`).
+pub fn copy_past_film(
+    grid: Grid,
+    flow: &mut [f64],
+    couette: &mut [f64],
+    film: &[bool],
+    material: &[bool],
+) {
+    for j in 0..grid.ny {
+        let row = j * grid.nx..(j + 1) * grid.nx;
+        let Some(last) = row.clone().rev().find(|&k| film[k]) else {
+            continue;
+        };
+        let (f_last, c_last) = (flow[last], couette[last]);
+        let past = last + 1..row.end;
+        let cells = flow[past.clone()]
+            .iter_mut()
+            .zip(&mut couette[past.clone()])
+            .zip(&material[past]);
+        for ((f, c), _) in cells.filter(|(_, &m)| m) {
+            *f = f_last;
+            *c = c_last;
+        }
+    }
+}
+
 /// dp/dx and dp/dy (Pa/m) at the cell centres: central differences, one-sided at the edges,
 /// zero along a direction with one cell.
 fn gradients(g: &Grid, p: &[f64]) -> (Vec<f64>, Vec<f64>) {
@@ -1498,6 +1516,34 @@ mod tests {
             h[k] = hc + (x * x + y * y) / (2.0 * radius);
         }
         (p, h)
+    }
+
+    /// Past a row's last cell with a film, the cells with material take its factors, also
+    /// beyond a cell without material (as the fresh factors do); cells without material and
+    /// rows without a film keep theirs.
+    #[test]
+    fn the_cells_past_a_film_copy_its_last_cell() {
+        let grid = Grid::new(5, 3, 0.0, 1.0, 0.0, 1.0);
+        let mut flow = vec![
+            1.1, 1.2, 1.3, 1.4, 1.5, 2.1, 2.2, 2.3, 2.4, 2.5, 3.1, 3.2, 3.3, 3.4, 3.5,
+        ];
+        let mut couette = vec![
+            0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5,
+        ];
+        let t = true;
+        let o = false;
+        // row 0: film on cells 1-2; row 1: film on cells 0-1, cell 2 without material; row 2:
+        // no film
+        let film = [o, t, t, o, o, t, t, o, o, o, o, o, o, o, o];
+        let mut material = [true; 15];
+        material[7] = false;
+        super::copy_past_film(grid, &mut flow, &mut couette, &film, &material);
+        assert_eq!(&flow[..5], &[1.1, 1.2, 1.3, 1.3, 1.3]);
+        assert_eq!(&couette[..5], &[0.1, 0.2, 0.3, 0.3, 0.3]);
+        assert_eq!(&flow[5..10], &[2.1, 2.2, 2.3, 2.2, 2.2]);
+        assert_eq!(&couette[5..10], &[0.6, 0.7, 0.8, 0.7, 0.7]);
+        assert_eq!(&flow[10..], &[3.1, 3.2, 3.3, 3.4, 3.5]);
+        assert_eq!(&couette[10..], &[1.1, 1.2, 1.3, 1.4, 1.5]);
     }
 
     /// A row's film ends one cell past its last pressurised cell; past the cells the last
