@@ -215,11 +215,17 @@ struct Stats<'a> {
 }
 
 /// Loosest relative tolerance of a Newton step's linear solve (the Eisenstat-Walker forcing
-/// term is clamped to [1e-4, ETA_MAX]). Far from the solution the Newton steps are limited by
+/// term is clamped to [ETA_MIN, ETA_MAX]). Far from the solution the Newton steps are limited by
 /// the non-linearity (the cavitation boundary still moving), not by the linear solve: on the
 /// thesis roller at 256 x 512 cells ETA_MAX = 0.1 took the same 19 Newton steps as 1e-2 with
 /// 121 instead of 138 GMRES iterations on the finest grid (single runs: 2.9 s against 3.3-3.6 s).
 const ETA_MAX: f64 = 0.1;
+
+/// Tightest forcing term of a Newton step's linear solve: the lower clamp of the
+/// Eisenstat-Walker choice, and the first step's of a time step's solve from a start near its
+/// solution (`transient::step_first_eta`), which the floor in `NewtonRun::evaluate` (a
+/// reduction of the residual to 0.1 x tolerance, no further) then loosens.
+const ETA_MIN: f64 = 1e-4;
 
 /// The first step's forcing term of a Newton run started next to its solution: the thermal
 /// fixed point's Reynolds solves after its first, whose factors move little. ETA_MAX there
@@ -543,8 +549,8 @@ impl NewtonRun {
         self.merit = norm(&self.r);
         let merit = self.merit;
         if let Some(pm) = self.prev_merit {
-            // Eisenstat & Walker (1996) choice 2, safeguarded to [1e-4, ETA_MAX]
-            self.eta = (0.9 * (merit / pm).powi(2)).clamp(1e-4, ETA_MAX);
+            // Eisenstat & Walker (1996) choice 2, safeguarded to [ETA_MIN, ETA_MAX]
+            self.eta = (0.9 * (merit / pm).powi(2)).clamp(ETA_MIN, ETA_MAX);
             // switched evolution relaxation, at least doubled after a full step
             self.dtau *= (pm / merit)
                 .min(100.0)
@@ -828,6 +834,16 @@ fn solve_from(
     stats: &mut Stats,
 ) -> StageEnd {
     solve_from_with(sys, st, tol, ETA_MAX, par, stats)
+}
+
+/// The measure a Newton run's convergence test takes of the evaluated state `st` of `sys`
+/// (`NewtonRun::evaluate`): the larger of the relative mass imbalance and the relative load
+/// error.
+fn newton_score(sys: &System, st: &State) -> f64 {
+    let mut c = vec![0.0; sys.n()];
+    sys.scaling(st, &mut c, None);
+    let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
+    sys.relative_residual(st, &c).max(lerr.abs())
 }
 
 /// [`solve_from`] with the first Newton step's linear solve forced to `first_eta` (and, as

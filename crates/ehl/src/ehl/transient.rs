@@ -45,8 +45,8 @@
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{fields_si, polish_coupled, relax_factors, solve_thermal, ThermalParams};
 use super::{
-    better, line_band, solve_from, solve_steady_with_fallback_observed, EhlParams, EhlProblem,
-    SolvedFields, Stats, Termination,
+    better, line_band, solve_from, solve_from_with, solve_steady_with_fallback_observed, EhlParams,
+    EhlProblem, SolvedFields, Stats, Termination,
 };
 use crate::geometry::{GapSampler, GapWithFeatures};
 use crate::reynolds::residual;
@@ -87,6 +87,34 @@ pub const THERMAL_SEED_TEMPERATURE: f64 = 0.2;
 /// within 1.7e-5, films 4.4e-5 (at SRR 1.0; the step's film test is 1e-4), film temperatures
 /// 2.3e-3 K, the same worst energy balance (0.14 % and 0.39 %).
 pub const THERMAL_STEP_TEMPERATURE: f64 = 0.1;
+
+/// The forcing term of the first Newton step of each of a time step's solves (the step's first,
+/// from the state predicted from the last steps, and a thermal step's later ones, from the last
+/// pass's solution with the factors' small change) where the start's residual (the larger of
+/// the relative mass imbalance and load error, as `NewtonRun::evaluate` measures it) is at most
+/// the square root of the solve's tolerance: [`super::ETA_MIN`], which the floor in
+/// `NewtonRun::evaluate` loosens to what the tolerance needs (a linear reduction of the
+/// residual to 0.1 x tolerance); elsewhere [`super::ETA_MAX`], as any Newton run. Newton's
+/// error after a step with an exact linear solve is about the square of the error before it (in
+/// the solver's dimensionless variables, the constant of order one), so from a start within
+/// sqrt(tol) one step solved to the tolerance can end the solve, and the first step's error is
+/// the linear solve's, not the non-linearity's: solved to ETA_MAX it took the residual down
+/// only 15-35 times and a second step followed (traced on the thermal pit at 128^2: a step's
+/// seed solve 1.06e-3 -> 3.0e-5 -> 2.1e-6 against its 1e-5, a later pass's 2.09e-4 -> 1.28e-5
+/// -> 3.3e-7 against 1e-6), each Newton step costing a preconditioner, a line search and the H0
+/// column besides its GMRES iterations. Further out the non-linearity limits the step and a
+/// tight linear solve is wasted: the ball dent's steps start at ~1.2e-2 against 1e-6 and take
+/// 4-5 Newton steps; with the first solved tight regardless, 12 % fewer Newton steps but 5.5 %
+/// more GMRES iterations and 1-2 % more time. The whole-Jacobian preconditioner of a transient
+/// line solves every first step tight (`NewtonRun::new`). The fallback from the last solution,
+/// after a failed first solve, keeps ETA_MAX. Measured: BENCHMARKS.md.
+fn step_first_eta(sys: &System, st: &State, tol: f64) -> f64 {
+    if super::newton_score(sys, st) <= tol.sqrt() {
+        super::ETA_MIN
+    } else {
+        super::ETA_MAX
+    }
+}
 
 /// A thermal time step that has not settled in `thermal.max_step_passes` passes is handed to
 /// Newton's method on the coupled problem of the step (`super::thermal_newton`: the Reynolds
@@ -535,7 +563,15 @@ fn run(
         } else {
             params.newton.tolerance
         };
-        let mut end = solve_from(&mut sys, &mut st, first_tol, &params.newton, &mut stats);
+        let first_eta = step_first_eta(&sys, &st, first_tol);
+        let mut end = solve_from_with(
+            &mut sys,
+            &mut st,
+            first_tol,
+            first_eta,
+            &params.newton,
+            &mut stats,
+        );
         if !end.converged && past.len() > 1 {
             // the prediction may have led Newton astray: again from the last solution
             let mut again = State::new(n);
@@ -658,10 +694,12 @@ fn run(
                 relax_factors(contact, &p_si, &sys.active, &mut factors, &mut fresh, wk);
                 sys.thermal = Some(factors.clone());
                 sys.eval(&mut st);
-                end = solve_from(
+                let first_eta = step_first_eta(&sys, &st, params.newton.tolerance);
+                end = solve_from_with(
                     &mut sys,
                     &mut st,
                     params.newton.tolerance,
+                    first_eta,
                     &params.newton,
                     &mut stats,
                 );
