@@ -784,18 +784,14 @@ fn identities_hold_on_a_finite_roller_and_a_ball() {
     );
 }
 
-/// Mass on a finite roller: a 1 um pit passing through the thesis roller (mirror images, psi,
-/// side leakage at the ends), the discrete balance inflow - outflow - side leakage = d(mass)/dt
-/// at every step, relative to the inflow. The balance is the residual summed over the
-/// pressurised zone, each row solved to the Newton tolerance 1e-6 here (the line's test asks
-/// 1e-5 of a solve to 1e-8): asked 1e-4 for the sum over the wet cells, measured 4.1e-7.
 /// A time step predicted within sqrt(tol) of its solution ends in one Newton step: its first
 /// linear solve goes as far as the tolerance needs (`ehl::transient`, `step_first_eta`), not to
 /// the loosest forcing term, after which a second step followed. The thesis pit on the finite
 /// rollers at 64^2, 12 steps: once the pit has passed the inlet (the 6th step on) every step
 /// took 2 Newton steps with the first solved to 0.1 and takes 1 now (28 -> 21 in all). The
-/// bound, 24, fails with the first step to 0.1 throughout and leaves room for a step or two
-/// of rounding-level drift.
+/// total is asserted, not each step: the bound, 24, fails with the first step to 0.1
+/// throughout and leaves room for a step or two of drift elsewhere (the predictor, the
+/// preconditioner).
 #[test]
 fn a_time_step_predicted_near_its_solution_takes_one_newton_step() {
     let sol = solve_example(
@@ -817,6 +813,11 @@ fn a_time_step_predicted_near_its_solution_takes_one_newton_step() {
     assert!(newton.iter().sum::<usize>() <= 24, "{newton:?}");
 }
 
+/// Mass on a finite roller: a 1 um pit passing through the thesis roller (mirror images, psi,
+/// side leakage at the ends), the discrete balance inflow - outflow - side leakage = d(mass)/dt
+/// at every step, relative to the inflow. The balance is the residual summed over the
+/// pressurised zone, each row solved to the Newton tolerance 1e-6 here (the line's test asks
+/// 1e-5 of a solve to 1e-8): asked 1e-4 for the sum over the wet cells, measured 4.1e-7.
 #[test]
 fn mass_is_conserved_at_every_step_on_a_finite_roller() {
     let sol = solve_example(

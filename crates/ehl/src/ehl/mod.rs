@@ -11,7 +11,7 @@
 //!   Newton / primal-dual active set for cavitation) and the load balance (see `system`);
 //! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
 //!   1e-1 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs, see
-//!   `ETA_MAX`), J v by the exact directional derivative (one elastic operator application
+//!   `ETA_MAX` and `ETA_MIN`), J v by the exact directional derivative (one elastic operator application
 //!   per product), right-preconditioned by the local part of J (the Poiseuille stencil and the
 //!   elastic wedge coupling within a band along x, see `line_band`) solved by one V-cycle of
 //!   line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur complement;
@@ -221,10 +221,11 @@ struct Stats<'a> {
 /// 121 instead of 138 GMRES iterations on the finest grid (single runs: 2.9 s against 3.3-3.6 s).
 const ETA_MAX: f64 = 0.1;
 
-/// Tightest forcing term of a Newton step's linear solve: the lower clamp of the
-/// Eisenstat-Walker choice, and the first step's of a time step's solve from a start near its
-/// solution (`transient::step_first_eta`), which the floor in `NewtonRun::evaluate` (a
-/// reduction of the residual to 0.1 x tolerance, no further) then loosens.
+/// Tightest forcing term of the Eisenstat-Walker choice (its lower clamp), and the first step's
+/// of a time step's solve from within sqrt(tol) of its solution (`transient::step_first_eta`);
+/// either way the floor in `NewtonRun::evaluate` (a reduction of the scaled merit to 0.1 x
+/// tolerance / score, no further) loosens it. (A transient line's whole-Jacobian
+/// preconditioner starts from 0 instead, with its own floor.)
 const ETA_MIN: f64 = 1e-4;
 
 /// The first step's forcing term of a Newton run started next to its solution: the thermal
@@ -836,19 +837,26 @@ fn solve_from(
     solve_from_with(sys, st, tol, ETA_MAX, par, stats)
 }
 
-/// The measure a Newton run's convergence test takes of the evaluated state `st` of `sys`
-/// (`NewtonRun::evaluate`): the larger of the relative mass imbalance and the relative load
-/// error.
-fn newton_score(sys: &System, st: &State) -> f64 {
+/// The relative mass imbalance of the evaluated state `st` of `sys`, as a Newton run measures
+/// it (`System::relative_residual` with the state's own row scaling).
+fn relative_imbalance(sys: &System, st: &State) -> f64 {
     let mut c = vec![0.0; sys.n()];
     sys.scaling(st, &mut c, None);
+    sys.relative_residual(st, &c)
+}
+
+/// The measure a Newton run's convergence test takes of the evaluated state `st` of `sys`
+/// (`NewtonRun::evaluate`'s score): the larger of the relative mass imbalance and the relative
+/// load error.
+fn newton_score(sys: &System, st: &State) -> f64 {
     let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
-    sys.relative_residual(st, &c).max(lerr.abs())
+    relative_imbalance(sys, st).max(lerr.abs())
 }
 
 /// [`solve_from`] with the first Newton step's linear solve forced to `first_eta` (and, as
-/// every step's, no tighter than the tolerance needs): [`ETA_WARM`] for a state already near
-/// its solution.
+/// every step's, no tighter than the tolerance needs): [`ETA_WARM`] for the steady thermal
+/// fixed point's later solves, [`ETA_MIN`] for a time step's solve from within sqrt(tol) of
+/// its solution (`transient::step_first_eta`).
 fn solve_from_with(
     sys: &mut System,
     st: &mut State,

@@ -936,9 +936,7 @@ fn reynolds_tolerance(tol: f64, residual: f64, factor_tol: f64, start: f64) -> f
 /// measures it (`System::relative_residual`): before an outer iteration's Reynolds solve, what
 /// the new factors leave at the last pressure ([`reynolds_tolerance`]).
 fn start_imbalance(sys: &System, st: &State) -> f64 {
-    let mut c = vec![0.0; sys.n()];
-    sys.scaling(st, &mut c, None);
-    sys.relative_residual(st, &c)
+    super::relative_imbalance(sys, st)
 }
 
 /// The least reduction of the mass imbalance that an outer iteration's Reynolds solve makes

@@ -90,26 +90,28 @@ pub const THERMAL_STEP_TEMPERATURE: f64 = 0.1;
 
 /// The forcing term of the first Newton step of each of a time step's solves (the step's first,
 /// from the state predicted from the last steps, and a thermal step's later ones, from the last
-/// pass's solution with the factors' small change) where the start's residual (the larger of
-/// the relative mass imbalance and load error, as `NewtonRun::evaluate` measures it) is at most
-/// the square root of the solve's tolerance: [`super::ETA_MIN`], which the floor in
-/// `NewtonRun::evaluate` loosens to what the tolerance needs (a linear reduction of the
-/// residual to 0.1 x tolerance); elsewhere [`super::ETA_MAX`], as any Newton run. Newton's
-/// error after a step with an exact linear solve is about the square of the error before it (in
-/// the solver's dimensionless variables, the constant of order one), so from a start within
-/// sqrt(tol) one step solved to the tolerance can end the solve, and the first step's error is
-/// the linear solve's, not the non-linearity's: solved to ETA_MAX it took the residual down
-/// only 15-35 times and a second step followed (traced on the thermal pit at 128^2: a step's
-/// seed solve 1.06e-3 -> 3.0e-5 -> 2.1e-6 against its 1e-5, a later pass's 2.09e-4 -> 1.28e-5
-/// -> 3.3e-7 against 1e-6), each Newton step costing a preconditioner, a line search and the H0
-/// column besides its GMRES iterations. Further out the non-linearity limits the step and a
-/// tight linear solve is wasted: the ball dent's steps start at ~1.2e-2 against 1e-6 and take
-/// 4-5 Newton steps; with the first solved tight regardless, 12 % fewer Newton steps but 5.5 %
-/// more GMRES iterations and 1-2 % more time. The whole-Jacobian preconditioner of a transient
-/// line solves every first step tight (`NewtonRun::new`). The fallback from the last solution,
-/// after a failed first solve, keeps ETA_MAX. Measured: BENCHMARKS.md.
+/// pass's solution with the factors' small change): where the start's residual
+/// (`super::newton_score`, the score `NewtonRun::evaluate` tests) is at most the square root of
+/// the solve's tolerance, [`super::ETA_MIN`], which the floor in `NewtonRun::evaluate` raises
+/// to what the tolerance needs (max(ETA_MIN, 0.1 tol / score), a reduction of the scaled merit
+/// standing in for the residual's, as that floor does); elsewhere [`super::ETA_MAX`], as a
+/// steady solve's first step. Newton's error after a step with an exact linear solve is about
+/// the square of the error before it (in the solver's dimensionless variables, the constant of
+/// order one), so from a start within sqrt(tol) one step solved to the tolerance can end the
+/// solve, and the first step's error is the linear solve's, not the non-linearity's: solved to
+/// ETA_MAX it took the residual down only 15-35 times and a second step followed (traced on the
+/// thermal pit at 128^2: a step's seed solve 1.06e-3 -> 3.0e-5 -> 2.1e-6 against its 1e-5, a
+/// later pass's 2.09e-4 -> 1.28e-5 -> 3.3e-7 against 1e-6), each Newton step costing a
+/// preconditioner, a line search and the H0 column besides its GMRES iterations. Further out
+/// the non-linearity limits the step and a tight linear solve is wasted: the ball dent's steps
+/// start at ~1.2e-2 against 1e-6 and take 4-5 Newton steps; with the first solved tight
+/// regardless, 12 % fewer Newton steps but 5.5 % more GMRES iterations and 1-2 % more time. A
+/// transient line's whole-Jacobian preconditioner solves every first step tight anyway
+/// (`NewtonRun::new`), so its solves skip the test. The fallback from the last solution, after
+/// a failed first solve, keeps ETA_MAX. Measured: BENCHMARKS.md, "A time step's first Newton
+/// step solved as far as its tolerance needs".
 fn step_first_eta(sys: &System, st: &State, tol: f64) -> f64 {
-    if super::newton_score(sys, st) <= tol.sqrt() {
+    if !sys.jacobian_reuse && super::newton_score(sys, st) <= tol.sqrt() {
         super::ETA_MIN
     } else {
         super::ETA_MAX
