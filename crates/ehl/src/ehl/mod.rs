@@ -11,10 +11,11 @@
 //!   Newton / primal-dual active set for cavitation) and the load balance (see `system`);
 //! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
 //!   1e-1 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs, see
-//!   `ETA_MAX` and `ETA_MIN`), J v by the exact directional derivative (one elastic operator application
-//!   per product), right-preconditioned by the local part of J (the Poiseuille stencil and the
-//!   elastic wedge coupling within a band along x, see `line_band`) solved by one V-cycle of
-//!   line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur complement;
+//!   `ETA_MAX` and `ETA_MIN`), J v by the exact directional derivative (one elastic operator
+//!   application per product), right-preconditioned by the local part of J (the Poiseuille
+//!   stencil and the elastic wedge coupling within a band along x, see `line_band`) solved by
+//!   one V-cycle of line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur
+//!   complement;
 //! * the time steps of a transient infinite line contact (ny == 1) are preconditioned instead
 //!   by the exact Jacobian held as a hierarchical (HODLR) approximate inverse, factored once
 //!   and kept over Newton steps and time steps until the GMRES iterations it costs outweigh a
@@ -222,7 +223,8 @@ struct Stats<'a> {
 const ETA_MAX: f64 = 0.1;
 
 /// Tightest forcing term of the Eisenstat-Walker choice (its lower clamp), and the first step's
-/// of a time step's solve from within sqrt(tol) of its solution (`transient::step_first_eta`);
+/// forcing term in a time step's solve from within sqrt(tol) of its solution
+/// (`transient::step_first_eta`);
 /// either way the floor in `NewtonRun::evaluate` (a reduction of the scaled merit to 0.1 x
 /// tolerance / score, no further) loosens it. (A transient line's whole-Jacobian
 /// preconditioner starts from 0 instead, with its own floor.)

@@ -104,12 +104,12 @@ pub const THERMAL_STEP_TEMPERATURE: f64 = 0.1;
 /// later pass's 2.09e-4 -> 1.28e-5 -> 3.3e-7 against 1e-6), each Newton step costing a
 /// preconditioner, a line search and the H0 column besides its GMRES iterations. Further out
 /// the non-linearity limits the step and a tight linear solve is wasted: the ball dent's steps
-/// start at ~1.2e-2 against 1e-6 and take 4-5 Newton steps; with the first solved tight
-/// regardless, 12 % fewer Newton steps but 5.5 % more GMRES iterations and 1-2 % more time. A
-/// transient line's whole-Jacobian preconditioner solves every first step tight anyway
-/// (`NewtonRun::new`), so its solves skip the test. The fallback from the last solution, after
-/// a failed first solve, keeps ETA_MAX. Measured: BENCHMARKS.md, "A time step's first Newton
-/// step solved as far as its tolerance needs".
+/// mostly start at ~1.2e-2 against 1e-6 and take 3.8 Newton steps on average; with the first
+/// solved tight regardless, 12 % fewer Newton steps but 5.5 % more GMRES iterations and 1-2 %
+/// more time. A transient line's whole-Jacobian preconditioner solves every first step tight
+/// anyway (`NewtonRun::new`), so its solves skip the test. The fallback from the last solution,
+/// after a failed first solve, keeps ETA_MAX. Measured: BENCHMARKS.md, "A time step's first
+/// Newton step solved as far as its tolerance needs".
 fn step_first_eta(sys: &System, st: &State, tol: f64) -> f64 {
     if !sys.jacobian_reuse && super::newton_score(sys, st) <= tol.sqrt() {
         super::ETA_MIN
