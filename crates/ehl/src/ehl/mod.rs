@@ -224,10 +224,9 @@ const ETA_MAX: f64 = 0.1;
 
 /// Tightest forcing term of the Eisenstat-Walker choice (its lower clamp), and the first step's
 /// forcing term in a time step's solve from within sqrt(tol) of its solution
-/// (`transient::step_first_eta`);
-/// either way the floor in `NewtonRun::evaluate` (a reduction of the scaled merit to 0.1 x
-/// tolerance / score, no further) loosens it. (A transient line's whole-Jacobian
-/// preconditioner starts from 0 instead, with its own floor.)
+/// (`transient::step_first_eta`); either way the floor in `NewtonRun::evaluate` (a reduction
+/// of the scaled merit to 0.1 x tolerance / score, no further) loosens it. (A transient line's
+/// whole-Jacobian preconditioner starts from 0 instead, with its own floor.)
 const ETA_MIN: f64 = 1e-4;
 
 /// The first step's forcing term of a Newton run started next to its solution: the thermal
