@@ -91,7 +91,7 @@ pub struct ThermalParams {
     /// the fixed point: with the change alone, the Table 3.7 line (Roelands-Carreau, U =
     /// 2.2e-10, SRR 0.3) stopped with its central film 5.2e-4 off a tightly converged one.
     pub factor_tolerance: f64,
-    /// once the factor residual is within 10 times `factor_tolerance`, the temperature
+    /// once the factor residual is within 10 times `factor_tolerance` (`NEAR_END`), the temperature
     /// solves go on to at most this many film iterations and twice their body iterations
     /// (early outer iterations need only a rough temperature): their own error otherwise
     /// kept the residual above the stop (the same line in pure rolling at U = 1.1e-10, 11
@@ -542,8 +542,8 @@ fn run(
         }
         outer += 1;
         fields_si(&sys, &st, ph, hs, &mut p_si, &mut h_si);
-        // the film's own iteration, like the Reynolds solve, no tighter than the factors are
-        // known until their residual nears its stop (see LOOSE_FILM)
+        // the film's own iteration stopped as far as the residual this update is expected to
+        // leave needs, its own stop once the residual nears its end (see film_stop)
         contact.options.line.tol = film_stop(&residuals, rough.line.tol, thermal.factor_tolerance);
         contact.options.line.nearest_root = std::mem::take(&mut check_polish);
         solved_before.copy_from_slice(contact.film_cells());
@@ -911,7 +911,7 @@ fn remaining_outer(residuals: &[f64], tol: f64) -> f64 {
 /// temperature update throws away, so [`LOOSE_REYNOLDS`] x `residual`, at most
 /// [`LOOSE_REYNOLDS_MAX`] and at most [`REYNOLDS_REDUCTION`] x `start` (the relative mass
 /// imbalance the new factors leave at the last pressure), never tighter than the case's `tol`,
-/// and `tol` itself once the residual is within 10 times its stop `factor_tol`: the solve
+/// and `tol` itself once the residual is within [`NEAR_END`] times its stop `factor_tol`: the solve
 /// before the fixed point stops is then to the case's tolerance (the driver stops only after
 /// such a solve).
 fn reynolds_tolerance(tol: f64, residual: f64, factor_tol: f64, start: f64) -> f64 {
@@ -972,14 +972,17 @@ const NEAR_END: f64 = 10.0;
 ///
 /// The expected residual, not the last one: where the coupling is weak the outer map contracts
 /// far faster than a stop taken from the last residual assumes. The thesis roller 256 x 512
-/// in pure rolling went from 2.2e-2 to 6.4e-4 in one outer iteration with its film stopped at
-/// 2.2e-3 K, and the film's own error (about beta dT, beta ~0.06 per K there) left the next
-/// residual at 1.34e-4, above the 1e-4 stop: a fifth update and a fourth Reynolds solve. With
-/// the stop at 0.26 x 2.2e-3 K (the ratio 2.2e-2 / 8.4e-2 before) it settles at its fourth
-/// update (residual 4.3e-5). Measured 2026-12-05 with the binary built both ways (BENCHMARKS.md):
-/// the roller at 256 x 512, 256 x 128 and 192 x 384 5 -> 4 outer iterations, 128 x 512 5 both;
-/// the thermal map 453 -> 454 outer iterations in all (the same 18 of 20 settled), the example
-/// line, ball and the Carreau roller as many as before.
+/// in pure rolling went from 2.2e-2 to 6.4e-4 in one outer iteration (a 34-fold fall) with
+/// its film stopped at 2.2e-3 K, and the film's own error (about beta dT, beta ~0.06 per K
+/// there) left the next residual at 1.34e-4, above the 1e-4 stop: a fifth update and a fourth
+/// Reynolds solve. The last ratio catches part of such a fall only (0.26 = 2.2e-2 / 8.4e-2
+/// there, the stop 5.8e-4 K), enough for it to settle at its fourth update (residual 4.3e-5).
+/// Measured 2026-12-05 with the binary built both ways (BENCHMARKS.md): the roller at 256 x
+/// 512, 256 x 128 and 192 x 384 5 -> 4 outer iterations, 128 x 512 5 both; the thermal map
+/// 453 -> 454 outer iterations in all (the same 18 of 20 settled), the robustness scan 577 ->
+/// 556 (all 31 settled), the example line, ball and the Carreau roller as many as before. The
+/// stop is never looser than the last residual's: a small ratio costs film iterations, not
+/// accuracy.
 fn film_stop(residuals: &[f64], rough: f64, factor_tol: f64) -> f64 {
     let Some(&last) = residuals.last() else {
         return rough.max(LOOSE_FILM_MAX);
@@ -995,7 +998,8 @@ fn film_stop(residuals: &[f64], rough: f64, factor_tol: f64) -> f64 {
 /// factors' residual the next update is expected to leave ([`film_stop`]), in place of its
 /// own 1e-4 K: a film temperature off by dT moves ln of the factors by about beta dT (beta =
 /// -d ln eta / dT, 0.03-0.1 per K for a mineral oil), so 0.1 K per unit residual keeps the
-/// film's own error at a few per cent of what the factors still have to move. Measured 2026-11-28 (the thesis roller 256 x 512 with
+/// film's own error at a few per cent of what the factors still have to move. Measured
+/// 2026-11-28, per unit of the last residual then (the thesis roller 256 x 512 with
 /// `[thermal]` at SRR 0.3, Carreau): 17.4 -> 14.1 s (medians of 3), the same 10 outer
 /// iterations; 1 and 0.3 per unit were faster still but lost the Table 3.7 line at SRR 0.3 and
 /// L = 13 from the thermal map (14 of 20 settled instead of 15); 0.1 keeps the map's 15.
@@ -1377,6 +1381,10 @@ mod tests {
             film_stop(&[1e-2, 1.1e-3], 1e-6, tol),
             0.1 * 1.1e-3 * 0.11
         ));
+        // a first residual that was infinite (cells solved for the first time) gives no
+        // ratio, nor does a NaN
+        assert!(close(film_stop(&[f64::INFINITY, 1e-2], rough, tol), 1e-3));
+        assert_eq!(film_stop(&[f64::NAN], rough, tol), LOOSE_FILM_MAX);
     }
 
     /// A far fixed point that wanders (factors' residual ~1, as an Eyring line's at 1 GPa or
