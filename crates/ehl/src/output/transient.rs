@@ -787,14 +787,18 @@ fn pieces(pts: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
-/// Top of a magnitude axis: 12 % above the largest finite value (0..1 when there is none).
+/// A magnitude axis that holds zero and every finite value: from 0 (or 12 % below the most
+/// negative value) to 12 % of the span above the largest (0..1.12 when there is none). An
+/// all-negative series (the friction coefficient where body 2 is the faster surface) ends at
+/// zero, as a positive one starts there: before, its axis ended at its largest value and the
+/// curve ran along the panel's top edge.
 fn top_of(values: impl Iterator<Item = f64>) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((0.0f64, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
-    let hi = if hi.is_finite() { hi } else { 1.0 };
+    let hi = if hi.is_finite() { hi.max(0.0) } else { 1.0 };
     let lo = if lo < 0.0 { lo * 1.12 } else { 0.0 };
     drawable_range(lo, hi + 0.12 * (hi - lo))
 }
@@ -1577,6 +1581,22 @@ pub(super) fn write_passage_frame_png_of(
 
 #[cfg(test)]
 mod tests {
+    /// A magnitude axis holds zero and every value, with room above the curve: a positive
+    /// series from 0 to 12 % above its top, an all-negative one from 12 % below its bottom to
+    /// above 0, a mixed one both; no values give 0..1.12.
+    #[test]
+    fn a_magnitude_axis_holds_zero_and_every_value() {
+        let r = super::top_of([1.0, 2.0].into_iter());
+        assert!(r.start == 0.0 && (r.end - 2.24).abs() < 1e-12, "{r:?}");
+        let r = super::top_of([-4.37e-4, -4.38e-4, f64::NAN].into_iter());
+        assert!((r.start + 1.12 * 4.38e-4).abs() < 1e-15, "{r:?}");
+        assert!(r.end > 0.0 && r.end < 0.2 * 4.38e-4, "{r:?}");
+        let r = super::top_of([-1.0, 3.0].into_iter());
+        assert!(r.start < -1.0 && r.end > 3.0, "{r:?}");
+        let r = super::top_of(std::iter::empty());
+        assert!(r.start == 0.0 && (r.end - 1.12).abs() < 1e-12, "{r:?}");
+    }
+
     use super::*;
 
     /// The crop keeps exactly the rows inside the window, with their values, on a grid whose
