@@ -23,7 +23,8 @@
 //!   their linear solves then go to 1e-3 of
 //!   what the tolerance asks, so that one Newton step usually ends the time step;
 //! * grid sequencing: every solve starts on grids 2, 4, ... times coarser (from the given start
-//!   averaged onto them), each level's solution interpolated as the next level's start;
+//!   averaged onto them), each level's solution (to at most 1e-3, `COARSE_TOLERANCE`)
+//!   interpolated as the next level's start;
 //! * a backtracking line search on ||R||_2 (P clamped at >= 0), pseudo-transient continuation if
 //!   plain Newton fails, and then continuation in the pressure-viscosity coefficient (alpha
 //!   scaled by 1/4, 1/2, ... up to 1, each stage started from the previous solution).
