@@ -8,7 +8,7 @@
 //! docs/thermal.md.
 
 use ehl::case::{parse_str, Case};
-use ehl::solution::Solution;
+use ehl::solution::{Solution, Summary};
 
 const LINE: &str = include_str!("../../../examples/ehl_friction_line.toml");
 const THERMAL: &str = include_str!("../../../examples/ehl_thermal_line.toml");
@@ -748,17 +748,23 @@ fn the_thermal_fixed_point_stops_within_its_tolerance() {
             "thermal.film_tolerance=1e-6",
             "thermal.max_iterations=400",
         ]);
-        for (name, a, b) in [
-            ("central film", d.central_film_m, t.central_film_m),
-            ("minimum film", d.min_film_m, t.min_film_m),
-            ("friction", d.friction_coefficient, t.friction_coefficient),
-        ] {
-            let (a, b) = (a.unwrap(), b.unwrap());
-            assert!(
-                (a / b - 1.0).abs() < 1e-4,
-                "U {speed}: {name}: default {a:.7e}, tight {b:.7e}"
-            );
-        }
+        assert_within_film_tolerance(&format!("U {speed}"), &d, &t);
+    }
+}
+
+/// The central and minimum film and the friction coefficient of `d` (a run to the default
+/// stop) within the film tolerance, 1e-4 relative, of `t` (the same run converged tightly).
+fn assert_within_film_tolerance(label: &str, d: &Summary, t: &Summary) {
+    for (name, a, b) in [
+        ("central film", d.central_film_m, t.central_film_m),
+        ("minimum film", d.min_film_m, t.min_film_m),
+        ("friction", d.friction_coefficient, t.friction_coefficient),
+    ] {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert!(
+            (a / b - 1.0).abs() < 1e-4,
+            "{label}: {name}: default {a:.7e}, tight {b:.7e}"
+        );
     }
 }
 
@@ -1160,17 +1166,7 @@ fn a_weakly_coupled_roller_settles_at_its_fourth_update() {
     let outer = d.thermal_iterations.unwrap();
     assert!(outer <= 4, "{outer} outer iterations");
     let t = run(&["thermal.film_tolerance=1e-7", "thermal.tolerance=1e-5"]);
-    for (name, a, b) in [
-        ("central film", d.central_film_m, t.central_film_m),
-        ("minimum film", d.min_film_m, t.min_film_m),
-        ("friction", d.friction_coefficient, t.friction_coefficient),
-    ] {
-        let (a, b) = (a.unwrap(), b.unwrap());
-        assert!(
-            (a / b - 1.0).abs() < 1e-4,
-            "{name}: default {a:.7e}, tight {b:.7e}"
-        );
-    }
+    assert_within_film_tolerance("roller 256 x 128", &d, &t);
 }
 
 /// The EHL-FBNS ball (0.09 m/s, 0.2 um film) with sliding, 64 x 64 cells. Its bodies are slow

@@ -789,9 +789,10 @@ fn pieces(pts: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
 
 /// A magnitude axis that holds zero and every finite value: from 0 (or 12 % below the most
 /// negative value) to 12 % of the span above the largest (0..1.12 when there is none). An
-/// all-negative series (the friction coefficient where body 2 is the faster surface) ends at
-/// zero, as a positive one starts there: before, its axis ended at its largest value and the
-/// curve ran along the panel's top edge.
+/// all-negative series (a friction coefficient the rolling Poiseuille traction makes negative,
+/// as on the thesis single pit at SRR 0.02, docs/pits.md) ends at zero, as a positive one
+/// starts there: before, its axis ended at its largest value and the curve ran along the
+/// panel's top edge.
 fn top_of(values: impl Iterator<Item = f64>) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
