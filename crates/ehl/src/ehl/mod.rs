@@ -1160,10 +1160,10 @@ fn restrict(fg: &Grid, v: &[f64], cg: &Grid) -> Vec<f64> {
 /// Its solution is only the finer grid's start, and interpolated there it leaves a relative
 /// mass imbalance of order 1 to 10 (the thesis roller 256 x 512: 16 on its finest grid, 11 on
 /// the one before), whatever the coarse tolerance: the digits past 1e-3 were thrown away. A
-/// thermal run's isothermal start has solved every grid to 1e-3 since 2026-11-28
+/// steady thermal run's isothermal start has solved every grid to 1e-3 since 2026-11-28
 /// (`crate::run::thermal::START_TOLERANCE`). Measured 2026-12-05 (Newton steps of the whole
-/// solve, one run each; the results within 1e-9 of the coarse grids solved to the case's
-/// 1e-6): the thesis roller 256 x 512 19 -> 18, the same at the example's 512 x 128 15 -> 12,
+/// solve; the results within 1e-9 of the coarse grids solved to the case's 1e-6): the thesis
+/// roller 256 x 512 19 -> 18, the same at the example's 512 x 128 15 -> 12,
 /// the glass ball 129^2 15 -> 13, `ehl_friction_line.toml` 16 -> 13 (BENCHMARKS.md).
 const COARSE_TOLERANCE: f64 = 1e-3;
 

@@ -1582,6 +1582,8 @@ pub(super) fn write_passage_frame_png_of(
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     /// A magnitude axis holds zero and every value, with room above the curve: a positive
     /// series from 0 to 12 % above its top, an all-negative one from 12 % below its bottom to
     /// above 0, a mixed one both; no values give 0..1.12.
@@ -1597,8 +1599,6 @@ mod tests {
         let r = super::top_of(std::iter::empty());
         assert!(r.start == 0.0 && (r.end - 1.12).abs() < 1e-12, "{r:?}");
     }
-
-    use super::*;
 
     /// The crop keeps exactly the rows inside the window, with their values, on a grid whose
     /// cells are the original ones.
