@@ -787,21 +787,37 @@ fn pieces(pts: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
-/// A magnitude axis that holds zero and every finite value: from 0 (or 12 % below the most
-/// negative value) to 12 % of the span above the largest (0..1.12 when there is none). An
-/// all-negative series (a friction coefficient the rolling Poiseuille traction makes negative,
-/// as on the thesis single pit at SRR 0.02, docs/pits.md) ends at zero, as a positive one
-/// starts there: before, its axis ended at its largest value and the curve ran along the
-/// panel's top edge.
+/// Top of a magnitude axis: 12 % above the largest finite value (0..1.12 when there is none).
 fn top_of(values: impl Iterator<Item = f64>) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((0.0f64, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
-    let hi = if hi.is_finite() { hi.max(0.0) } else { 1.0 };
+    let hi = if hi.is_finite() { hi } else { 1.0 };
     let lo = if lo < 0.0 { lo * 1.12 } else { 0.0 };
     drawable_range(lo, hi + 0.12 * (hi - lo))
+}
+
+/// An axis fitted to a series whose change over the travel is the point (the friction
+/// coefficient: a pit moves it by a few per cent, thesis ch. 3): its finite values with 12 %
+/// of their span above and below, and at least 2 % of their magnitude, so that a flat series
+/// sits mid-panel in a band of +-2 % (0..1 when there is none). Either sign: the friction of
+/// the thesis examples is negative where the rolling Poiseuille traction outweighs the
+/// sliding one (docs/pits.md). Before, the panel took the magnitude axis: from zero for a
+/// positive series, which flattened a 5 % change to a line, and to the largest value for a
+/// negative one, where a flat series ran along the panel's top edge.
+fn fitted(values: impl Iterator<Item = f64>) -> Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if lo > hi {
+        return drawable_range(0.0, 1.0);
+    }
+    let pad = (0.12 * (hi - lo)).max(0.02 * lo.abs().max(hi.abs()));
+    drawable_range(lo - pad, hi + pad)
 }
 
 /// Writes `timeline.png`: see the module documentation.
@@ -889,7 +905,7 @@ pub fn write_timeline_png(path: &Path, case: &Case, t: &TransientRecord) -> Resu
             .collect();
         panels.push(Panel {
             y_label: "friction coefficient".into(),
-            range: top_of(mu.iter().copied()),
+            range: fitted(mu.iter().copied()),
             lines: vec![Line {
                 label: if mu.iter().all(|m| m.is_finite()) {
                     "friction coefficient".into()
@@ -1584,20 +1600,33 @@ pub(super) fn write_passage_frame_png_of(
 mod tests {
     use super::*;
 
-    /// A magnitude axis holds zero and every value, with room above the curve: a positive
-    /// series from 0 to 12 % above its top, an all-negative one from 12 % below its bottom to
-    /// above 0, a mixed one both; no values give 0..1.12.
+    /// The friction panel's axis is fitted to its series: a negative series (the thesis
+    /// pit's, -4.2e-4 .. -4.65e-4) with at least 2 % of its magnitude above and below, and no
+    /// zero; a flat one centred in +-2 % of its magnitude; a positive one zoomed too (a 3 %
+    /// change of 5.8e-3 fills over a third of the panel); a wide one with 12 % of its span; NaN
+    /// gaps ignored; no values give 0..1.
     #[test]
-    fn a_magnitude_axis_holds_zero_and_every_value() {
-        let r = super::top_of([1.0, 2.0].into_iter());
-        assert!(r.start == 0.0 && (r.end - 2.24).abs() < 1e-12, "{r:?}");
-        let r = super::top_of([-4.37e-4, -4.38e-4, f64::NAN].into_iter());
-        assert!((r.start + 1.12 * 4.38e-4).abs() < 1e-15, "{r:?}");
-        assert!(r.end > 0.0 && r.end < 0.2 * 4.38e-4, "{r:?}");
-        let r = super::top_of([-1.0, 3.0].into_iter());
-        assert!(r.start < -1.0 && r.end > 3.0, "{r:?}");
-        let r = super::top_of(std::iter::empty());
-        assert!(r.start == 0.0 && (r.end - 1.12).abs() < 1e-12, "{r:?}");
+    fn the_friction_axis_is_fitted_to_its_series() {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-300);
+        let r = fitted([-4.2e-4, -4.65e-4, f64::NAN].into_iter());
+        let pad = 0.02 * 4.65e-4;
+        assert!(
+            close(r.start, -4.65e-4 - pad) && close(r.end, -4.2e-4 + pad),
+            "{r:?}"
+        );
+        assert!(r.end < 0.0, "{r:?}");
+        let r = fitted([-4.375e-4, -4.38e-4].into_iter());
+        let mid = 0.5 * (r.start + r.end);
+        assert!((mid + 4.3775e-4).abs() < 1e-9, "{r:?}");
+        assert!(r.end - r.start >= 0.04 * 4.375e-4, "{r:?}");
+        let r = fitted([5.8e-3, 5.97e-3].into_iter());
+        assert!(r.start > 5.0e-3 && r.end < 6.5e-3, "{r:?}");
+        assert!((5.97e-3 - 5.8e-3) / (r.end - r.start) > 0.35, "{r:?}");
+        let span = 1.0;
+        let r = fitted([0.0, span].into_iter());
+        assert!(close(r.start, -0.12) && close(r.end, 1.12), "{r:?}");
+        assert_eq!(fitted(std::iter::empty()), 0.0..1.0);
+        assert_eq!(fitted([f64::NAN].into_iter()), 0.0..1.0);
     }
 
     /// The crop keeps exactly the rows inside the window, with their values, on a grid whose
