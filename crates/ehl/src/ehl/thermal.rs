@@ -378,6 +378,20 @@ const FACTOR_BACKTRACKS: usize = 4;
 /// so in its reason ([`crate::run::thermal::loading_hint`]), and `ehl check` notes it.
 pub const CONVERGED_THERMAL_LOADING: f64 = 2.5;
 
+/// The tolerance of a thermal run's isothermal start, steady or transient (or the case's, where
+/// looser): the start only seeds the first outer iteration, whose factors then move by several
+/// per cent and whose own Reynolds solve goes to at most 1e-3 (`reynolds_tolerance`). Measured
+/// 2026-11-28 (steady), two rounds: the thesis roller 256 x 512 with `[thermal]` 9.9-10.3 ->
+/// 9.2-9.6 s, 256 x 128 SRR 0.3 Carreau 3.26-3.34 -> 3.15-3.17 s, `ehl_thermal_ball.toml`
+/// 0.62-0.63 -> 0.59-0.60 s; the same outer and Newton iterations, central films within 1.5e-8.
+/// A transient run's steady start was solved to the case's tolerance until 2026-12-05.
+///
+/// Looser does not pay: at 1e-1 the roller's finest grid took 3 Newton steps instead of 6 and
+/// its outer iterations the same 10 (2026-12-05), but a fast ball (20 m/s, SRR 0.3, L = 6)
+/// no longer settled in 80 outer iterations, and a line held by its limiting shear stress
+/// settled on another path: above L ~ 2.5 the fixed point's path depends on its start.
+pub const START_TOLERANCE: f64 = 1e-3;
+
 /// The thermal solution: the EHL fields (viscosity and density at the mid-film temperature),
 /// and how the fixed point went. The temperatures stay in the [`ThermalContact`].
 #[derive(Debug, Clone)]

@@ -43,7 +43,9 @@
 //!   (their solves O(n k log n) instead of O(n^2)).
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
-use super::thermal::{fields_si, polish_coupled, relax_factors, solve_thermal, ThermalParams};
+use super::thermal::{
+    fields_si, polish_coupled, relax_factors, solve_thermal, ThermalParams, START_TOLERANCE,
+};
 use super::{
     better, line_band, solve_from, solve_from_with, solve_steady_with_fallback_observed, EhlParams,
     EhlProblem, SolvedFields, Stats, Termination,
@@ -414,8 +416,17 @@ fn run(
         start.newton.unwrap_or(&mut quiet_newton),
         start.thermal.unwrap_or(&mut quiet_thermal),
     );
+    // (a thermal run's isothermal start only seeds its steady thermal solution: see
+    // super::thermal::START_TOLERANCE)
+    let start_params = match thermal {
+        Some(_) => EhlParams {
+            tolerance: params.newton.tolerance.max(START_TOLERANCE),
+            ..params.newton.clone()
+        },
+        None => params.newton.clone(),
+    };
     let mut steady =
-        solve_steady_with_fallback_observed(&steady_problem, &params.newton, &|| {}, newton_told);
+        solve_steady_with_fallback_observed(&steady_problem, &start_params, &|| {}, newton_told);
     // a thermal run starts from the steady thermal solution
     let mut start_thermal = None;
     if let Some((tp, contact)) = thermal.as_mut() {

@@ -39,13 +39,7 @@ pub struct ThermalRun {
     pub contact: ThermalContact,
 }
 
-/// The tolerance of a thermal run's isothermal start (or the case's, where looser): the start
-/// only seeds the first outer iteration, whose factors then move by several per cent and whose
-/// own Reynolds solve goes to at most 1e-3 (`ehl::thermal`, `reynolds_tolerance`). Measured
-/// 2026-11-28, two rounds: the thesis roller 256 x 512 with `[thermal]` 9.9-10.3 -> 9.2-9.6 s,
-/// 256 x 128 SRR 0.3 Carreau 3.26-3.34 -> 3.15-3.17 s, `ehl_thermal_ball.toml` 0.62-0.63 ->
-/// 0.59-0.60 s; the same outer and Newton iterations, central films within 1.5e-8.
-pub const START_TOLERANCE: f64 = 1e-3;
+pub use crate::ehl::thermal::START_TOLERANCE;
 
 /// Solves the thermal problem of `case` from the isothermal solution `iso` of `problem`.
 pub fn solve(
