@@ -266,6 +266,18 @@ impl SmallLu {
     }
 }
 
+/// [`SmallLu`]'s factorisation in place, into caller-owned storage (for many small systems in
+/// a loop, without an allocation each): the row-major `n x n` matrix `a` becomes its factors
+/// and `piv` (n values) the row swaps; false if a pivot is zero or not finite.
+pub fn factor_small(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
+    factor_in_place(a, n, piv)
+}
+
+/// x = A^-1 b with the factors of [`factor_small`] (in place: `x` holds b on entry).
+pub fn solve_factored_small(lu: &[f64], n: usize, piv: &[usize], x: &mut [f64]) {
+    solve_factored(lu, n, piv, x)
+}
+
 fn factor_in_place(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
     for c in 0..n {
         let p = (c..n)

@@ -196,6 +196,30 @@ impl ThermalLaws {
         self.lubricant.viscosity * self.log_relative_viscosity(p, t).exp()
     }
 
+    /// eta (Pa s) at pressure `p` (Pa) and each temperature of `t` (K), into `eta` (as long as
+    /// `t`): [`Self::viscosity`] point by point, with Roelands' pressure factor
+    /// (1 + p / p_r)^Z formed once (a column of the film shares its pressure; the same values
+    /// to the last bit).
+    pub fn viscosities(&self, p: f64, t: &[f64], eta: &mut [f64]) {
+        match self.iso {
+            ViscosityLaw::Barus { .. } => {
+                for (e, &t) in eta.iter_mut().zip(t) {
+                    *e = self.viscosity(p, t);
+                }
+            }
+            ViscosityLaw::Roelands { a, z } => {
+                let th = &self.thermal;
+                let pressure = (1.0 + p.max(0.0) / super::viscosity::ROELANDS_PR).powf(z);
+                for (e, &t) in eta.iter_mut().zip(t) {
+                    let ratio = ((t - ROELANDS_T_POLE).max(1e-3)
+                        / (th.inlet_temperature - ROELANDS_T_POLE))
+                        .powf(-th.viscosity_temperature.s0);
+                    *e = self.lubricant.viscosity * (a * (-1.0 + pressure * ratio)).exp();
+                }
+            }
+        }
+    }
+
     /// rho (kg/m^3) at (p, T): thesis eq. 2.9.
     #[inline]
     pub fn density(&self, p: f64, t: f64) -> f64 {

@@ -52,6 +52,9 @@ impl FilmLaws for ThermalLaws {
     fn viscosity(&self, p: f64, t: f64) -> f64 {
         ThermalLaws::viscosity(self, p, t)
     }
+    fn viscosities(&self, p: f64, t: &[f64], eta: &mut [f64]) {
+        ThermalLaws::viscosities(self, p, t, eta)
+    }
     fn density(&self, p: f64, t: f64) -> f64 {
         ThermalLaws::density(self, p, t)
     }

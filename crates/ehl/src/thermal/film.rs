@@ -79,6 +79,13 @@ impl From<FilmError> for crate::Error {
 pub trait FilmLaws: Sync {
     /// Low-shear viscosity eta(p, T) (Pa s).
     fn viscosity(&self, p: f64, t: f64) -> f64;
+    /// [`FilmLaws::viscosity`] at pressure `p` and each temperature of `t` (a column's points),
+    /// into `eta`; laws whose pressure part costs override it to form that part once.
+    fn viscosities(&self, p: f64, t: &[f64], eta: &mut [f64]) {
+        for (e, &t) in eta.iter_mut().zip(t) {
+            *e = self.viscosity(p, t);
+        }
+    }
     /// Density rho(p, T) (kg/m^3).
     fn density(&self, p: f64, t: f64) -> f64;
     /// d rho / dT at constant p (kg/(m^3 K)); negative for thermal expansion.

@@ -729,6 +729,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
     let (rho, drho) = rest.split_at_mut(nz);
     let p = line.p[i];
     let ti = &t[i * nz..(i + 1) * nz];
+    laws.viscosities(p, ti, eta);
     for k in 0..nz {
         let check = |law: &'static str, value: f64| {
             if value > 0.0 && value.is_finite() {
@@ -742,7 +743,7 @@ fn column_coefficients<L: FilmLaws + ?Sized>(
                 })
             }
         };
-        eta[k] = check("viscosity", laws.viscosity(p, ti[k]))?;
+        eta[k] = check("viscosity", eta[k])?;
         rho[k] = check("density", laws.density(p, ti[k]))?;
         drho[k] = laws.density_dt(p, ti[k]);
         if !drho[k].is_finite() {
@@ -1305,71 +1306,77 @@ pub fn wall_response(
     let (mf, jflux) = face_fluxes(rule, nx, inv_dx, &coef.mass_flux, &sinks(line, coef));
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     let w = &rule.weights;
-    (0..nx)
-        .map(|i| {
-            let h = line.h[i];
-            let kf = oil.conductivity_at(line.p[i]);
-            let kc = cell_conductivity(rule, kf, cp, h, h_min, &jflux[i * nz..(i + 1) * nz]);
-            // the across-film operator at point k applied to point l
-            let across = |k: usize, l: usize| {
-                cp * jflux[i * nz + k] * rule.d1[k * nz + l] - kc / h * rule.d2[k * nz + l]
-            };
-            // the x-convection's own coefficient at point k: from the left face where the
-            // flow enters the cell, the right where it leaves backwards; `ends` counts the
-            // faces at the line's ends, which a surface point treats as its own temperature
-            let convection = |k: usize, ends: bool| {
-                if !(inv_dx > 0.0) {
-                    return 0.0;
-                }
-                let left = if i > 0 || ends {
-                    mf[i * nz + k].max(0.0)
-                } else {
-                    0.0
-                };
-                let right = if i + 1 < nx || ends {
-                    mf[(i + 1) * nz + k].min(0.0)
-                } else {
-                    0.0
-                };
-                cp * inv_dx * (left - right)
-            };
-            let mut a = vec![0.0; ni * ni];
-            for k in 1..nz - 1 {
-                for l in 1..nz - 1 {
-                    a[(k - 1) * ni + l - 1] = across(k, l);
-                }
-                a[(k - 1) * ni + k - 1] +=
-                    convection(k, true) + own_coefficient(line, coef, cp, i * nz + k, h);
+    // per cell: the across-film operator (point k applied to point l, nz x nz), the interior
+    // block's LU factors and pivots, and the two columns' answers (scratch, reused)
+    let mut op = vec![0.0; nz * nz];
+    let mut a = vec![0.0; ni * ni];
+    let mut piv = vec![0; ni];
+    let mut col = vec![0.0; nz];
+    let mut out = Vec::with_capacity(nx);
+    for i in 0..nx {
+        let h = line.h[i];
+        let kf = oil.conductivity_at(line.p[i]);
+        let kc = cell_conductivity(rule, kf, cp, h, h_min, &jflux[i * nz..(i + 1) * nz]);
+        for k in 0..nz {
+            let (jk, kh) = (cp * jflux[i * nz + k], kc / h);
+            for l in 0..nz {
+                op[k * nz + l] = jk * rule.d1[k * nz + l] - kh * rule.d2[k * nz + l];
             }
-            let conduction = [-kf / h, kf / h, kf / h, -kf / h];
-            let Some(lu) = crate::linalg::dense::SmallLu::factor(a, ni) else {
-                return conduction;
-            };
-            let mut out = [0.0; 4];
-            for (b, wall) in [0, nz - 1].into_iter().enumerate() {
-                let mut col = vec![0.0; nz];
-                col[wall] = 1.0;
-                let mut x: Vec<f64> = (1..nz - 1).map(|k| -across(k, wall)).collect();
-                lu.solve(&mut x);
-                col[1..nz - 1].copy_from_slice(&x);
-                for (f, end) in [0, nz - 1].into_iter().enumerate() {
-                    // the change of the wall point's residual, then of the consistent flux
-                    let at = i * nz + end;
-                    let r = (0..nz).map(|l| across(end, l) * col[l]).sum::<f64>()
-                        + (convection(end, false) + own_coefficient(line, coef, cp, at, h))
-                            * col[end];
-                    let grad: f64 = (0..nz).map(|l| rule.d1[end * nz + l] * col[l]).sum();
-                    let sign = if f == 0 { 1.0 } else { -1.0 };
-                    out[2 * f + b] = sign * kc / h * grad - w[end] * r;
-                }
+        }
+        // the x-convection's own coefficient at point k: from the left face where the flow
+        // enters the cell, the right where it leaves backwards; `ends` counts the faces at the
+        // line's ends, which a surface point treats as its own temperature
+        let convection = |k: usize, ends: bool| {
+            if !(inv_dx > 0.0) {
+                return 0.0;
             }
-            if out.iter().all(|v| v.is_finite()) {
-                out
+            let left = if i > 0 || ends {
+                mf[i * nz + k].max(0.0)
             } else {
-                conduction
+                0.0
+            };
+            let right = if i + 1 < nx || ends {
+                mf[(i + 1) * nz + k].min(0.0)
+            } else {
+                0.0
+            };
+            cp * inv_dx * (left - right)
+        };
+        for k in 1..nz - 1 {
+            a[(k - 1) * ni..k * ni].copy_from_slice(&op[k * nz + 1..k * nz + nz - 1]);
+            a[(k - 1) * ni + k - 1] +=
+                convection(k, true) + own_coefficient(line, coef, cp, i * nz + k, h);
+        }
+        let conduction = [-kf / h, kf / h, kf / h, -kf / h];
+        if !crate::linalg::dense::factor_small(&mut a, ni, &mut piv) {
+            out.push(conduction);
+            continue;
+        }
+        let mut r4 = [0.0; 4];
+        for (b, wall) in [0, nz - 1].into_iter().enumerate() {
+            col.fill(0.0);
+            col[wall] = 1.0;
+            for k in 1..nz - 1 {
+                col[k] = -op[k * nz + wall];
             }
-        })
-        .collect()
+            crate::linalg::dense::solve_factored_small(&a, ni, &piv, &mut col[1..nz - 1]);
+            for (f, end) in [0, nz - 1].into_iter().enumerate() {
+                // the change of the wall point's residual, then of the consistent flux
+                let at = i * nz + end;
+                let r = (0..nz).map(|l| op[end * nz + l] * col[l]).sum::<f64>()
+                    + (convection(end, false) + own_coefficient(line, coef, cp, at, h)) * col[end];
+                let grad: f64 = (0..nz).map(|l| rule.d1[end * nz + l] * col[l]).sum();
+                let sign = if f == 0 { 1.0 } else { -1.0 };
+                r4[2 * f + b] = sign * kc / h * grad - w[end] * r;
+            }
+        }
+        out.push(if r4.iter().all(|v| v.is_finite()) {
+            r4
+        } else {
+            conduction
+        });
+    }
+    out
 }
 
 /// The energy accounting ([`LineEnergy`]) of the temperature `t` (K, nx * nz) with the
