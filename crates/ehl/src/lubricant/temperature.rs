@@ -311,6 +311,24 @@ mod tests {
         }
     }
 
+    /// A column's viscosities (the pressure factor formed once) are the point-by-point law's to
+    /// the last bit, for both viscosity models, at pressures from below ambient (clamped) to
+    /// 2 GPa and temperatures from below the inlet to 200 K above it.
+    #[test]
+    fn a_columns_viscosities_are_the_pointwise_law() {
+        let t = [290.0, 313.0, 313.5, 350.0, 420.0, 513.0];
+        for m in [ViscosityModel::Roelands, ViscosityModel::Barus] {
+            let laws = ThermalLaws::new(&oil(m), &thermal(1.1));
+            for p in [-1e6, 0.0, 3e8, 1e9, 2e9] {
+                let mut eta = [0.0; 6];
+                laws.viscosities(p, &t, &mut eta);
+                for (e, &ti) in eta.iter().zip(&t) {
+                    assert_eq!(*e, laws.viscosity(p, ti), "{m:?} p {p} T {ti}");
+                }
+            }
+        }
+    }
+
     /// The slope d ln(eta)/dT at p = 0, T0 is -S0 (ln eta0 + 9.67)/(T0 - 138) (thermal.md), by a
     /// central difference (its error ~ h^2 ln eta'''/6 ~ 1e-9 relative at h = 1e-3 K).
     #[test]
