@@ -11,7 +11,8 @@
 //!   Newton / primal-dual active set for cavitation) and the load balance (see `system`);
 //! * each Newton step solves J d = -R by restarted flexible GMRES to a relative tolerance of
 //!   1e-1 .. 1e-4 (Eisenstat-Walker forcing, no tighter than the tolerance needs, see
-//!   `ETA_MAX` and `ETA_MIN`), J v by the exact directional derivative (one elastic operator
+//!   `ETA_MAX` and `ETA_MIN`) in the row-weighted norm of `MERIT_WEIGHT_EXPONENT` (the line
+//!   search's too), J v by the exact directional derivative (one elastic operator
 //!   application per product), right-preconditioned by the local part of J (the Poiseuille
 //!   stencil and the elastic wedge coupling within a band along x, see `line_band`) solved by
 //!   one V-cycle of line-relaxation multigrid (a banded LU on a line contact), H0 by a Schur
@@ -25,7 +26,7 @@
 //! * grid sequencing: every solve starts on grids 2, 4, ... times coarser (from the given start
 //!   averaged onto them), each level's solution (to at most 1e-3, `COARSE_TOLERANCE`)
 //!   interpolated as the next level's start;
-//! * a backtracking line search on ||R||_2 (P clamped at >= 0), pseudo-transient continuation if
+//! * a backtracking line search on ||W R||_2 (P clamped at >= 0), pseudo-transient continuation if
 //!   plain Newton fails, and then continuation in the pressure-viscosity coefficient (alpha
 //!   scaled by 1/4, 1/2, ... up to 1, each stage started from the previous solution).
 //!
@@ -40,7 +41,7 @@ use crate::case::Lubricant;
 use crate::elastic::Deflection;
 use crate::geometry::GapSampler;
 use crate::grid::Grid;
-use crate::linalg::gmres::{gmres, norm, GmresOutcome, GmresWork};
+use crate::linalg::gmres::{gmres, GmresOutcome, GmresWork};
 use crate::reference::film;
 use crate::reynolds::residual;
 use system::{
@@ -236,6 +237,34 @@ const ETA_MIN: f64 = 1e-4;
 /// thermal runs fell 19 -> 17 (thesis roller 256 x 512), 19 -> 12 (the same at 256 x 128, SRR
 /// 0.3, Carreau) and 24 -> 17 (`ehl_thermal_line.toml`), 5-10 % of their time.
 const ETA_WARM: f64 = 1e-2;
+
+/// The Newton steps measure the merit vector R (rows c_k Phi_k, c_k = 1 / (Poiseuille +
+/// |wedge| diagonal), see `System::scaling`) in the norm ||W R||_2 with the row weights
+/// w_k = (c_max / c_k)^MERIT_WEIGHT_EXPONENT (c_max the largest over the cells; the load row
+/// 1): GMRES minimises that norm (W applied to the Jacobian's rows and undone before the
+/// preconditioner, so that W J M^-1 W^-1 keeps the spectrum of J M^-1) and the line search and
+/// the forcing terms use it too.
+///
+/// Why: the convergence test is the unscaled relative mass imbalance (rows Phi_k, see
+/// `System::relative_residual`), and near the end of a solve 65-98 % of it sits in the far
+/// inlet, where the thick film's Poiseuille diagonal makes c_k small (traced on the thesis
+/// roller at 256 x 512: c = 5.6e-9 at x cell 0, 100 times less than at the thermal film's
+/// start, x cell 83): the scaled merit (exponent 0) hardly saw those rows, and the last
+/// Newton steps of a solve went to them (the finest grid's imbalance 6.3e-2 -> 3.0e-2 over
+/// two steps while the merit fell 30-fold). With exponent 1 the merit is the test's own
+/// rows, but GMRES then works on W J M^-1 W^-1 with weights over six decades, far from
+/// normal: the isothermal roller took 568 GMRES iterations instead of 214. Measured
+/// 2026-12-05 (GMRES iterations of whole runs, exponent 0 / 0.25 / 0.5; films and friction
+/// within 2.3e-7 relative of exponent 0's; BENCHMARKS.md): the thesis roller 256 x 512
+/// 214 / 209 / 186 (and with `[thermal]` the fixed point's 10 Newton steps and 224 GMRES
+/// iterations -> 7 and 175 at 0.5, 192 at 0.75),
+/// at 512 x 128 80 / 82 / 70, the ball on glass 110 / 88 / 75, `ehl_friction_line.toml`
+/// 466 / 408 / 390, the glass ball at 5 m/s with `[thermal]` 668 / 569 / 524, the single pit
+/// over 30 steps (256^2) 608 / 610 / 569, the transient ball dent 4166 / 3844 / 3436; the
+/// Carreau roller at SRR 0.3 with `[thermal]` 150 / 146 / 159 (one Newton step more), the
+/// thermal line 1132 / 1072 / 1121. The transient line contacts' whole-Jacobian path keeps
+/// exponent 0 (its GMRES is a few iterations a step).
+const MERIT_WEIGHT_EXPONENT: f64 = 0.5;
 
 /// Why a Newton run (or a whole steady solve) stopped. `Display` gives the sentence written to
 /// `summary.json`'s `termination`.
@@ -445,6 +474,10 @@ struct NewtonRun {
     /// merit vector (scaled residual and load row) of the current state and of the trial
     r: Vec<f64>,
     rt: Vec<f64>,
+    /// the merit's row weights at the current state (see [`MERIT_WEIGHT_EXPONENT`]), and
+    /// scratch for the preconditioner's unweighted input
+    weight: Vec<f64>,
+    unweighted: Vec<f64>,
     /// the Newton direction (P, H0)
     u: Vec<f64>,
     /// the scaled H0 column of the Jacobian
@@ -465,7 +498,7 @@ struct NewtonRun {
     /// the current pseudo-time shift 1/dtau of this step's solve
     shift: f64,
     full_step: bool,
-    /// ||R|| of the last steps (stall test)
+    /// ||W R|| of the last steps (stall test)
     recent: Vec<f64>,
     /// Newton steps taken
     it: usize,
@@ -485,6 +518,8 @@ impl NewtonRun {
             set_t: vec![false; n],
             r: vec![0.0; n + 1],
             rt: vec![0.0; n + 1],
+            weight: vec![1.0; n + 1],
+            unweighted: vec![0.0; n + 1],
             u: vec![0.0; n + 1],
             bcol: vec![0.0; n],
             e_h0,
@@ -524,6 +559,7 @@ impl NewtonRun {
         }
         sys.scaling(st, &mut self.c, Some(&mut self.share));
         sys.merit_vector(st, &self.c, &mut self.r, &mut self.set);
+        self.weigh(sys);
         let res = sys.relative_residual(st, &self.c);
         let lerr = (sys.carried(&st.p) - sys.load) / sys.load;
         let score = res.max(lerr.abs());
@@ -549,7 +585,7 @@ impl NewtonRun {
         if res <= tol && lerr.abs() <= tol {
             return Some(Termination::Converged);
         }
-        self.merit = norm(&self.r);
+        self.merit = weighted_norm(&self.r, &self.weight);
         let merit = self.merit;
         if let Some(pm) = self.prev_merit {
             // Eisenstat & Walker (1996) choice 2, safeguarded to [ETA_MIN, ETA_MAX]
@@ -582,6 +618,25 @@ impl NewtonRun {
         None
     }
 
+    /// The merit's row weights at the current scaling `c` ([`MERIT_WEIGHT_EXPONENT`]; all 1
+    /// with a transient line's whole-Jacobian preconditioner).
+    fn weigh(&mut self, sys: &System) {
+        let n = sys.n();
+        if sys.jacobian_reuse {
+            self.weight.fill(1.0);
+            return;
+        }
+        let top = self.c.iter().cloned().fold(0.0f64, f64::max);
+        for (w, &c) in self.weight[..n].iter_mut().zip(&self.c) {
+            *w = if c > 0.0 {
+                (top / c).powf(MERIT_WEIGHT_EXPONENT)
+            } else {
+                1.0
+            };
+        }
+        self.weight[n] = 1.0;
+    }
+
     /// The Newton direction `u`: J u = -R by preconditioned GMRES (the whole-Jacobian
     /// preconditioner of a transient line when it applies, else the line / multigrid one), with the
     /// pseudo-time shift on the Reynolds rows.
@@ -598,7 +653,13 @@ impl NewtonRun {
             0.0
         };
         let shift = self.shift;
-        let rhs: Vec<f64> = self.r.iter().map(|v| -v).collect();
+        // (weighted: -W R; the whole-Jacobian path's weights are 1)
+        let rhs: Vec<f64> = self
+            .r
+            .iter()
+            .zip(&self.weight)
+            .map(|(v, w)| -v * w)
+            .collect();
         let dense = if sys.jacobian_reuse && shift == 0.0 {
             line_jacobian_solve(
                 sys,
@@ -633,6 +694,8 @@ impl NewtonRun {
                     return Err(Termination::SingularPreconditioner);
                 };
                 let (c, set, lin) = (&self.c, &self.set, &mut self.lin);
+                let (weight, unweighted) = (&self.weight, &mut self.unweighted);
+                // W J u = -W R, right-preconditioned by M W^-1 (M approximates J)
                 let out = gmres(
                     &mut self.work,
                     &rhs,
@@ -640,8 +703,16 @@ impl NewtonRun {
                     par.gmres_restart,
                     par.max_linear_iterations,
                     self.eta,
-                    &mut |v, o| jacobian_product(sys, st, lin, c, set, shift, v, o),
-                    &mut |v, o| pc.apply(v, o),
+                    &mut |v, o| {
+                        jacobian_product(sys, st, lin, c, set, shift, v, o);
+                        o.iter_mut().zip(weight).for_each(|(o, w)| *o *= w);
+                    },
+                    &mut |v, o| {
+                        for ((x, v), w) in unweighted.iter_mut().zip(v).zip(weight) {
+                            *x = v / w;
+                        }
+                        pc.apply(unweighted, o)
+                    },
                 );
                 self.spare_pc = Some(pc);
                 out
@@ -651,7 +722,8 @@ impl NewtonRun {
         Ok(())
     }
 
-    /// Backtracking line search on ||R||_2 (same scaling c) along `u`, P clamped at >= 0: true
+    /// Backtracking line search on ||W R||_2 (same scaling c and weights W) along `u`, P clamped
+    /// at >= 0: true
     /// when a step length was accepted (the trial state holds it).
     fn line_search(&mut self, sys: &mut System, st: &State) -> bool {
         let n = sys.n();
@@ -669,7 +741,7 @@ impl NewtonRun {
                 let film_ok = || (0..n).all(|k| trial.p[k] <= 0.0 || trial.h[k] > 0.0);
                 if trial.is_finite() && film_ok() {
                     sys.merit_vector(trial, &self.c, &mut self.rt, &mut self.set_t);
-                    let m = norm(&self.rt);
+                    let m = weighted_norm(&self.rt, &self.weight);
                     if m.is_finite() && m <= (1.0 - 1e-4 * lam) * self.merit {
                         break true;
                     }
@@ -1160,8 +1232,8 @@ fn restrict(fg: &Grid, v: &[f64], cg: &Grid) -> Vec<f64> {
 /// Its solution is only the finer grid's start, and interpolated there it leaves a relative
 /// mass imbalance of order 1 to 10 (the thesis roller 256 x 512: 16 on its finest grid, 11 on
 /// the one before), whatever the coarse tolerance: the digits past 1e-3 were thrown away. A
-/// steady thermal run's isothermal start has solved every grid to 1e-3 since 2026-11-28
-/// (`crate::run::thermal::START_TOLERANCE`). Measured 2026-12-05 (Newton steps of the whole
+/// steady thermal run's isothermal start has solved every grid to 1e-3 since 2026-11-28, a
+/// transient thermal run's since 2026-12-05 ([`thermal::START_TOLERANCE`]). Measured 2026-12-05 (Newton steps of the whole
 /// solve; the results within 1e-9 of the coarse grids solved to the case's 1e-6): the thesis
 /// roller 256 x 512 19 -> 18, the same at the example's 512 x 128 15 -> 12,
 /// the glass ball 129^2 15 -> 13, `ehl_friction_line.toml` 16 -> 13 (BENCHMARKS.md).
@@ -1385,4 +1457,13 @@ mod tests {
         assert!(b.contains("extent still moved"), "{b}");
         assert!(b.contains("Reynolds factors by 2.0e0"), "{b}");
     }
+}
+
+/// ||W r||_2, W = diag(`w`).
+fn weighted_norm(r: &[f64], w: &[f64]) -> f64 {
+    r.iter()
+        .zip(w)
+        .map(|(a, b)| (a * b) * (a * b))
+        .sum::<f64>()
+        .sqrt()
 }

@@ -176,7 +176,9 @@ pub enum TimeScheme {
 /// Controls of a transient run.
 #[derive(Debug, Clone, Copy)]
 pub struct TransientParams {
-    /// the Newton-Krylov controls, used for the steady start and for every step
+    /// the Newton-Krylov controls, used for the steady start and for every step (a thermal
+    /// run's isothermal start, which only seeds its steady thermal solution, to
+    /// max(tolerance, [`super::thermal::START_TOLERANCE`]))
     pub newton: EhlParams,
     pub scheme: TimeScheme,
     /// carry the moving features by their own discrete transport
@@ -421,9 +423,9 @@ fn run(
     let start_params = match thermal {
         Some(_) => EhlParams {
             tolerance: params.newton.tolerance.max(START_TOLERANCE),
-            ..params.newton.clone()
+            ..params.newton
         },
-        None => params.newton.clone(),
+        None => params.newton,
     };
     let mut steady =
         solve_steady_with_fallback_observed(&steady_problem, &start_params, &|| {}, newton_told);

@@ -268,7 +268,8 @@ impl SmallLu {
 
 /// [`SmallLu`]'s factorisation in place, into caller-owned storage (for many small systems in
 /// a loop, without an allocation each): the row-major `n x n` matrix `a` becomes its factors
-/// and `piv` (n values) the row swaps; false if a pivot is zero or not finite.
+/// and `piv` (n values) the row swaps; false if a pivot is zero or not finite (`a` and `piv`
+/// then hold a partial factorisation, not to be used).
 pub fn factor_small(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
     factor_in_place(a, n, piv)
 }

@@ -182,10 +182,7 @@ impl ThermalLaws {
                 alpha * p.max(0.0) - th.viscosity_temperature.beta * (t - th.inlet_temperature)
             }
             ViscosityLaw::Roelands { a, z } => {
-                let pole = ROELANDS_T_POLE;
-                let ratio = ((t - pole).max(1e-3) / (th.inlet_temperature - pole))
-                    .powf(-th.viscosity_temperature.s0);
-                a * (-1.0 + (1.0 + p.max(0.0) / super::viscosity::ROELANDS_PR).powf(z) * ratio)
+                a * (-1.0 + Self::roelands_pressure(p, z) * self.roelands_temperature(t))
             }
         }
     }
@@ -201,6 +198,7 @@ impl ThermalLaws {
     /// (1 + p / p_r)^Z formed once (a column of the film shares its pressure; the same values
     /// to the last bit).
     pub fn viscosities(&self, p: f64, t: &[f64], eta: &mut [f64]) {
+        debug_assert_eq!(t.len(), eta.len(), "one viscosity per temperature");
         match self.iso {
             ViscosityLaw::Barus { .. } => {
                 for (e, &t) in eta.iter_mut().zip(t) {
@@ -208,16 +206,29 @@ impl ThermalLaws {
                 }
             }
             ViscosityLaw::Roelands { a, z } => {
-                let th = &self.thermal;
-                let pressure = (1.0 + p.max(0.0) / super::viscosity::ROELANDS_PR).powf(z);
+                let pressure = Self::roelands_pressure(p, z);
                 for (e, &t) in eta.iter_mut().zip(t) {
-                    let ratio = ((t - ROELANDS_T_POLE).max(1e-3)
-                        / (th.inlet_temperature - ROELANDS_T_POLE))
-                        .powf(-th.viscosity_temperature.s0);
+                    let ratio = self.roelands_temperature(t);
                     *e = self.lubricant.viscosity * (a * (-1.0 + pressure * ratio)).exp();
                 }
             }
         }
+    }
+
+    /// Roelands' pressure factor (1 + p / p_r)^Z at `p` (Pa; negative is ambient), p_r =
+    /// 1.96e8 Pa (thesis eq. 2.11).
+    #[inline]
+    fn roelands_pressure(p: f64, z: f64) -> f64 {
+        (1.0 + p.max(0.0) / super::viscosity::ROELANDS_PR).powf(z)
+    }
+
+    /// Roelands' temperature factor ((T - 138) / (T0 - 138))^-S0 at `t` (K), the temperature
+    /// clamped just above the pole (138 K).
+    #[inline]
+    fn roelands_temperature(&self, t: f64) -> f64 {
+        let th = &self.thermal;
+        let pole = ROELANDS_T_POLE;
+        ((t - pole).max(1e-3) / (th.inlet_temperature - pole)).powf(-th.viscosity_temperature.s0)
     }
 
     /// rho (kg/m^3) at (p, T): thesis eq. 2.9.
@@ -313,17 +324,23 @@ mod tests {
 
     /// A column's viscosities (the pressure factor formed once) are the point-by-point law's to
     /// the last bit, for both viscosity models, at pressures from below ambient (clamped) to
-    /// 2 GPa and temperatures from below the inlet to 200 K above it.
+    /// 2 GPa and temperatures from below the Roelands pole (clamped) to 200 K above the inlet,
+    /// and the film's laws (`FilmLaws`) use them.
     #[test]
     fn a_columns_viscosities_are_the_pointwise_law() {
-        let t = [290.0, 313.0, 313.5, 350.0, 420.0, 513.0];
+        use crate::thermal::film::FilmLaws;
+        // (100 K: below the Roelands pole, clamped)
+        let t = [100.0, 290.0, 313.0, 313.5, 350.0, 420.0, 513.0];
         for m in [ViscosityModel::Roelands, ViscosityModel::Barus] {
             let laws = ThermalLaws::new(&oil(m), &thermal(1.1));
             for p in [-1e6, 0.0, 3e8, 1e9, 2e9] {
-                let mut eta = [0.0; 6];
+                let (mut eta, mut film) = ([0.0; 7], [0.0; 7]);
                 laws.viscosities(p, &t, &mut eta);
-                for (e, &ti) in eta.iter().zip(&t) {
+                // and the film's laws take this route
+                FilmLaws::viscosities(&laws, p, &t, &mut film);
+                for ((e, f), &ti) in eta.iter().zip(&film).zip(&t) {
                     assert_eq!(*e, laws.viscosity(p, ti), "{m:?} p {p} T {ti}");
+                    assert_eq!(f, e, "{m:?} p {p} T {ti}: FilmLaws");
                 }
             }
         }

@@ -1000,7 +1000,7 @@ fn solve_ehl(
         initial_pressure: dry_start,
     };
     // a thermal run's isothermal solution is only the seed of its first outer iteration, whose
-    // own Reynolds solve is no tighter than 1e-3 (thermal::START_TOLERANCE)
+    // own Reynolds solve goes to at most 1e-3 (thermal::START_TOLERANCE)
     let start_params = match &case.thermal {
         Some(_) => EhlParams {
             tolerance: params.tolerance.max(thermal::START_TOLERANCE),

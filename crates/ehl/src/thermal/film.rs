@@ -82,6 +82,7 @@ pub trait FilmLaws: Sync {
     /// [`FilmLaws::viscosity`] at pressure `p` and each temperature of `t` (a column's points),
     /// into `eta`; laws whose pressure part costs override it to form that part once.
     fn viscosities(&self, p: f64, t: &[f64], eta: &mut [f64]) {
+        debug_assert_eq!(t.len(), eta.len(), "one viscosity per temperature");
         for (e, &t) in eta.iter_mut().zip(t) {
             *e = self.viscosity(p, t);
         }

@@ -1307,7 +1307,8 @@ pub fn wall_response(
     let h_min = line.h.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     let w = &rule.weights;
     // per cell: the across-film operator (point k applied to point l, nz x nz), the interior
-    // block's LU factors and pivots, and the two columns' answers (scratch, reused)
+    // block's LU factors and pivots, and the column's answer to one wall's temperature (scratch
+    // reused from cell to cell, and `col` from one wall to the other)
     let mut op = vec![0.0; nz * nz];
     let mut a = vec![0.0; ni * ni];
     let mut piv = vec![0; ni];
