@@ -227,7 +227,7 @@ const ETA_MAX: f64 = 0.1;
 /// Tightest forcing term of the Eisenstat-Walker choice (its lower clamp), and the first step's
 /// forcing term in a time step's solve from within sqrt(tol) of its solution
 /// (`transient::step_first_eta`); either way the floor in `NewtonRun::evaluate` (a reduction
-/// of the scaled merit to 0.1 x tolerance / score, no further) loosens it. (A transient line's
+/// of the (weighted) merit to 0.1 x tolerance / score, no further) loosens it. (A transient line's
 /// whole-Jacobian preconditioner starts from 0 instead, with its own floor.)
 const ETA_MIN: f64 = 1e-4;
 
@@ -238,15 +238,19 @@ const ETA_MIN: f64 = 1e-4;
 /// 0.3, Carreau) and 24 -> 17 (`ehl_thermal_line.toml`), 5-10 % of their time.
 const ETA_WARM: f64 = 1e-2;
 
-/// The Newton steps measure the merit vector R (rows c_k Phi_k, c_k = 1 / (Poiseuille +
-/// |wedge| diagonal), see `System::scaling`) in the norm ||W R||_2 with the row weights
-/// w_k = (c_max / c_k)^MERIT_WEIGHT_EXPONENT (c_max the largest over the cells; the load row
-/// 1): GMRES minimises that norm (W applied to the Jacobian's rows and undone before the
-/// preconditioner, so that W J M^-1 W^-1 keeps the spectrum of J M^-1) and the line search and
-/// the forcing terms use it too.
+/// The Newton steps measure the merit vector R (rows Phi_k = min(P_k, c_k F_k) = c_k min(P_k /
+/// c_k, F_k), c_k = 1 / (Poiseuille + |wedge| diagonal), see `System::scaling`, and the load
+/// row) in the norm ||W R||_2 with the row weights w_k = (c_max / c_k)^MERIT_WEIGHT_EXPONENT
+/// (c_max the largest over the cells of the current state; the load row 1): GMRES minimises
+/// that norm (W applied to the Jacobian's rows and undone before the preconditioner, so that
+/// W J M^-1 W^-1 keeps the spectrum of J M^-1) and the line search and the forcing terms use
+/// it too. Every Reynolds row's weight is at least 1, so the load row counts for less against
+/// them than in the unweighted merit (its scale s_L was set to balance them, `system`); H0 is
+/// taken by the preconditioner's exact Schur step (the thesis roller's solves, traced, ended
+/// with load errors of 1e-14 either way).
 ///
-/// Why: the convergence test is the unscaled relative mass imbalance (rows Phi_k, see
-/// `System::relative_residual`), and near the end of a solve 65-98 % of it sits in the far
+/// Why: the convergence test is the unscaled relative mass imbalance (rows min(P_k / c_k,
+/// F_k) = Phi_k / c_k, see `System::relative_residual`), and near the end of a solve 65-98 % of it sits in the far
 /// inlet, where the thick film's Poiseuille diagonal makes c_k small (traced on the thesis
 /// roller at 256 x 512: c = 5.6e-9 at x cell 0, 100 times less than at the thermal film's
 /// start, x cell 83): the scaled merit (exponent 0) hardly saw those rows, and the last
@@ -278,9 +282,10 @@ pub enum Termination {
     MaxIterations(usize),
     /// the line preconditioner could not be factored
     SingularPreconditioner,
-    /// ||R|| fell by less than 0.1 % over the last 8 Newton steps
+    /// the merit ||W R|| ([`MERIT_WEIGHT_EXPONENT`]) fell by less than 0.1 % over the last 8
+    /// Newton steps
     Stalled { step: usize, merit: f64 },
-    /// plain Newton: no step length along the Newton direction reduced ||R||
+    /// plain Newton: no step length along the Newton direction reduced ||W R||
     LineSearchFailed { step: usize },
     /// pseudo-transient continuation: no descent even with a small pseudo-time step
     NoDescent { step: usize },
@@ -360,7 +365,7 @@ impl std::fmt::Display for Termination {
             Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(
                 f,
-                "stalled at Newton step {step}: ||R|| {merit:.3e} unchanged over 8 steps"
+                "stalled at Newton step {step}: the weighted merit ||W R|| {merit:.3e} unchanged over 8 steps"
             ),
             Termination::LineSearchFailed { step } => {
                 write!(f, "line search failed at Newton step {step}")
@@ -418,9 +423,10 @@ struct StageEnd {
 ///
 /// Globalised by pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998)
 /// 508-523): the Reynolds rows of J get the shift 1/dtau, dtau grows by switched evolution
-/// relaxation (dtau_k+1 = dtau_k ||R_k|| / ||R_k+1||) so the iteration turns into Newton as
-/// the residual falls; each step is then backtracked on ||R||_2, and a step that does not
-/// reduce ||R|| is retried with dtau / 4.
+/// relaxation (dtau_k+1 = dtau_k ||W R_k|| / ||W R_k+1||, the weighted merit of
+/// [`MERIT_WEIGHT_EXPONENT`]) so the iteration turns into Newton as the residual falls; each
+/// step is then backtracked on ||W R||_2, and a step that does not reduce it is retried with
+/// dtau / 4.
 ///
 /// The iteration is run as its phases ([`NewtonRun`]): evaluate the state (and test for
 /// convergence), find the direction (one preconditioned GMRES solve), search along it, then
@@ -626,9 +632,14 @@ impl NewtonRun {
             self.weight.fill(1.0);
             return;
         }
-        let top = self.c.iter().cloned().fold(0.0f64, f64::max);
+        let top = self
+            .c
+            .iter()
+            .cloned()
+            .filter(|c| c.is_finite())
+            .fold(0.0f64, f64::max);
         for (w, &c) in self.weight[..n].iter_mut().zip(&self.c) {
-            *w = if c > 0.0 {
+            *w = if c > 0.0 && c.is_finite() {
                 (top / c).powf(MERIT_WEIGHT_EXPONENT)
             } else {
                 1.0
@@ -722,9 +733,8 @@ impl NewtonRun {
         Ok(())
     }
 
-    /// Backtracking line search on ||W R||_2 (same scaling c and weights W) along `u`, P clamped
-    /// at >= 0: true
-    /// when a step length was accepted (the trial state holds it).
+    /// Backtracking line search on ||W R||_2 (same scaling c and weights W) along `u`, P
+    /// clamped at >= 0: true when a step length was accepted (the trial state holds it).
     fn line_search(&mut self, sys: &mut System, st: &State) -> bool {
         let n = sys.n();
         let shift = self.shift;
@@ -759,7 +769,7 @@ impl NewtonRun {
     /// pseudo-time step shrinks (plain Newton: the run ends). Some when the run ends here.
     fn next(&mut self, st: &mut State, accepted: bool) -> Option<Termination> {
         let (it, merit) = (self.it, self.merit);
-        // stalled: ||R|| has not fallen by 0.1 % over the last 8 steps
+        // stalled: ||W R|| has not fallen by 0.1 % over the last 8 steps
         self.recent.push(merit);
         let k = self.recent.len();
         if k > 8 && merit > 0.999 * self.recent[k - 9] {
@@ -1431,6 +1441,15 @@ fn finish(
     out
 }
 
+/// ||W r||_2, W = diag(`w`).
+fn weighted_norm(r: &[f64], w: &[f64]) -> f64 {
+    r.iter()
+        .zip(w)
+        .map(|(a, b)| (a * b) * (a * b))
+        .sum::<f64>()
+        .sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::Termination;
@@ -1457,13 +1476,4 @@ mod tests {
         assert!(b.contains("extent still moved"), "{b}");
         assert!(b.contains("Reynolds factors by 2.0e0"), "{b}");
     }
-}
-
-/// ||W r||_2, W = diag(`w`).
-fn weighted_norm(r: &[f64], w: &[f64]) -> f64 {
-    r.iter()
-        .zip(w)
-        .map(|(a, b)| (a * b) * (a * b))
-        .sum::<f64>()
-        .sqrt()
 }

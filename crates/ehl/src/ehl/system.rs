@@ -13,6 +13,8 @@
 //!
 //! The residual vector R = [Phi; s_L (dX dY sum P - W*)], s_L = sqrt(n) / W*, so that
 //! ||R|| / sqrt(n) weighs the RMS of Phi (in units of p_h) and the relative load error alike.
+//! (The Newton steps measure R with row weights that favour the thick inlet's rows over this
+//! balance: `super::MERIT_WEIGHT_EXPONENT`.)
 //!
 //! Preconditioner (right): per grid line j a banded matrix along x, the rows of the Reynolds
 //! Jacobian that [`crate::reynolds::jacobian::reynolds_row`] writes from the residual's own

@@ -95,7 +95,7 @@ pub const THERMAL_STEP_TEMPERATURE: f64 = 0.1;
 /// pass's solution with the factors' small change): where the start's residual
 /// (`super::newton_score`, the score `NewtonRun::evaluate` tests) is at most the square root of
 /// the solve's tolerance, [`super::ETA_MIN`], which the floor in `NewtonRun::evaluate` raises
-/// to what the tolerance needs (max(ETA_MIN, 0.1 tol / score), a reduction of the scaled merit
+/// to what the tolerance needs (max(ETA_MIN, 0.1 tol / score), a reduction of the merit
 /// standing in for the residual's, as that floor does); elsewhere [`super::ETA_MAX`], as a
 /// steady solve's first step. Newton's error after a step with an exact linear solve is about
 /// the square of the error before it (in the solver's dimensionless variables, the constant of
