@@ -250,20 +250,19 @@ const ETA_WARM: f64 = 1e-2;
 /// with load errors of 1e-14 either way).
 ///
 /// Why: the convergence test is the unscaled relative mass imbalance (rows min(P_k / c_k,
-/// F_k) = Phi_k / c_k, see `System::relative_residual`), and near the end of a solve 65-98 % of it sits in the far
-/// inlet, where the thick film's Poiseuille diagonal makes c_k small (traced on the thesis
-/// roller at 256 x 512: c = 5.6e-9 at x cell 0, 100 times less than at the thermal film's
-/// start, x cell 83): the scaled merit (exponent 0) hardly saw those rows, and the last
-/// Newton steps of a solve went to them (the finest grid's imbalance 6.3e-2 -> 3.0e-2 over
-/// two steps while the merit fell 30-fold). With exponent 1 the merit is the test's own
-/// rows, but GMRES then works on W J M^-1 W^-1 with weights over six decades, far from
-/// normal: the isothermal roller took 568 GMRES iterations instead of 214. Measured
+/// F_k) = Phi_k / c_k, see `System::relative_residual`), and near the end of a solve 65-98 %
+/// of it sits in the far inlet, where the thick film's Poiseuille diagonal makes c_k small
+/// (traced on the thesis roller at 256 x 512: c = 5.6e-9 at x cell 0, 100 times less than at
+/// the thermal film's start, x cell 83): the scaled merit (exponent 0) hardly saw those rows,
+/// and the last Newton steps of a solve went to them (the finest grid's imbalance 6.3e-2 ->
+/// 3.0e-2 over two steps while the merit fell 30-fold). With exponent 1 the merit is the
+/// test's own rows, but GMRES then works on W J M^-1 W^-1 with weights over six decades, far
+/// from normal: the isothermal roller took 568 GMRES iterations instead of 214. Measured
 /// 2026-12-05 (GMRES iterations of whole runs, exponent 0 / 0.25 / 0.5; films and friction
 /// within 2.3e-7 relative of exponent 0's; BENCHMARKS.md): the thesis roller 256 x 512
 /// 214 / 209 / 186 (and with `[thermal]` the fixed point's 10 Newton steps and 224 GMRES
-/// iterations -> 7 and 175 at 0.5, 192 at 0.75),
-/// at 512 x 128 80 / 82 / 70, the ball on glass 110 / 88 / 75, `ehl_friction_line.toml`
-/// 466 / 408 / 390, the glass ball at 5 m/s with `[thermal]` 668 / 569 / 524, the single pit
+/// iterations -> 7 and 175 at 0.5, 192 at 0.75), at 512 x 128 80 / 82 / 70, the ball on
+/// glass 110 / 88 / 75, `ehl_friction_line.toml` 466 / 408 / 390, the glass ball at 5 m/s with `[thermal]` 668 / 569 / 524, the single pit
 /// over 30 steps (256^2) 608 / 610 / 569, the transient ball dent 4166 / 3844 / 3436; the
 /// Carreau roller at SRR 0.3 with `[thermal]` 150 / 146 / 159 (one Newton step more), the
 /// thermal line 1132 / 1072 / 1121. The transient line contacts' whole-Jacobian path keeps
@@ -365,7 +364,8 @@ impl std::fmt::Display for Termination {
             Termination::ThermalFailed(why) => write!(f, "temperature solve failed: {why}"),
             Termination::Stalled { step, merit } => write!(
                 f,
-                "stalled at Newton step {step}: the weighted merit ||W R|| {merit:.3e} unchanged over 8 steps"
+                "stalled at Newton step {step}: the weighted merit ||W R|| {merit:.3e} unchanged \
+                 over 8 steps"
             ),
             Termination::LineSearchFailed { step } => {
                 write!(f, "line search failed at Newton step {step}")
@@ -1243,10 +1243,11 @@ fn restrict(fg: &Grid, v: &[f64], cg: &Grid) -> Vec<f64> {
 /// mass imbalance of order 1 to 10 (the thesis roller 256 x 512: 16 on its finest grid, 11 on
 /// the one before), whatever the coarse tolerance: the digits past 1e-3 were thrown away. A
 /// steady thermal run's isothermal start has solved every grid to 1e-3 since 2026-11-28, a
-/// transient thermal run's since 2026-12-05 ([`thermal::START_TOLERANCE`]). Measured 2026-12-05 (Newton steps of the whole
-/// solve; the results within 1e-9 of the coarse grids solved to the case's 1e-6): the thesis
-/// roller 256 x 512 19 -> 18, the same at the example's 512 x 128 15 -> 12,
-/// the glass ball 129^2 15 -> 13, `ehl_friction_line.toml` 16 -> 13 (BENCHMARKS.md).
+/// transient thermal run's since 2026-12-05 ([`thermal::START_TOLERANCE`]). Measured
+/// 2026-12-05 (Newton steps of the whole solve; the results within 1e-9 of the coarse grids
+/// solved to the case's 1e-6): the thesis roller 256 x 512 19 -> 18, the same at the
+/// example's 512 x 128 15 -> 12, the glass ball 129^2 15 -> 13, `ehl_friction_line.toml`
+/// 16 -> 13 (BENCHMARKS.md).
 const COARSE_TOLERANCE: f64 = 1e-3;
 
 /// Solve on `grid` from the pressure `init` on it (None: a Hertz profile). Grid sequencing when
