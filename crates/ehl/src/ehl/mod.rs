@@ -281,7 +281,7 @@ pub enum Termination {
     MaxIterations(usize),
     /// the line preconditioner could not be factored
     SingularPreconditioner,
-    /// the merit ||W R|| ([`MERIT_WEIGHT_EXPONENT`]) fell by less than 0.1 % over the last 8
+    /// the merit ||W R|| (`MERIT_WEIGHT_EXPONENT`) fell by less than 0.1 % over the last 8
     /// Newton steps
     Stalled { step: usize, merit: f64 },
     /// plain Newton: no step length along the Newton direction reduced ||W R||
