@@ -336,22 +336,25 @@ fn polar_cell_coefficient(
     (singular + remainder) / (2.0 * PI * k)
 }
 
-/// [`cell_coefficient`] by the 8 x 8-point Gauss-Legendre product rule on the point-source
+/// [`cell_coefficient`] by an n x n-point Gauss-Legendre product rule on the point-source
 /// kernel G(w) = exp(-lambda (|w| - sign w_x)) / (2 pi k |w|) (w = target - source point; the
 /// moving point source, Carslaw & Jaeger 1959, sec. 10.7), where that rule is accurate: the
 /// cell's centre at least [`FAR_CELLS`] of its larger half-widths away, so the 1/|w| factor is
 /// smooth over it, and the exponent varying by at most [`FAR_EXPONENT`] over the cell's
 /// half-width in each direction (its slope is at most 2 lambda along x, lambda along y). The
-/// Gauss error bound for an exponential of half-range alpha, 2^17 (8!)^4 / (17 (16!)^3)
-/// alpha^16 e^alpha ~ 2.2e-18 alpha^16 e^alpha, is 1.1e-12 at alpha = 2, the 1/|w| factor's
-/// ~ (2 FAR_CELLS)^-16 below it; test `far_cells_by_gauss_match_the_polar_integral` measures
-/// the rule against the adaptive one. The lengths are taken in units of the larger half-width
+/// Gauss error bound for an exponential of half-range alpha, 2^(2n+1) (n!)^4 / ((2n + 1)
+/// ((2n)!)^3) alpha^2n e^alpha, is 1.1e-12 for n = 8 at alpha = 2; the 1/|w| factor's, from
+/// its singularity at d half-widths (its Bernstein ellipse, rho ~ 2 d), ~ (2 d)^-2n, 5e-18 for
+/// n = 8 at d = FAR_CELLS. n is the fewest points, from 3 to 8, that keep both below
+/// [`FAR_RULE_ERROR`] ([`far_rule_points`]): a distant cell of a slow body needs 3 where a
+/// near one needs 8. Test `far_cells_by_gauss_match_the_polar_integral` measures the rule
+/// against the adaptive one. The lengths are taken in units of the larger half-width
 /// (squares of lengths in metres would underflow below 1e-154 m). None where the rule does not
 /// apply.
 ///
 /// Most of a table is far cells: the thesis roller's at 256 x 512 (261 632 coefficients,
-/// lambda dx = 1.1) took 0.46 s by the polar integral alone, 0.12 s with this rule (2 cores),
-/// the same surface temperatures to 1e-12 K.
+/// lambda dx = 1.1) took 0.46 s by the polar integral alone, 0.12 s with the 8-point rule
+/// (2 cores), the same surface temperatures to 1e-12 K.
 #[inline]
 fn far_cell_coefficient(
     (x, y): (f64, f64),
@@ -365,10 +368,25 @@ fn far_cell_coefficient(
     {
         return None;
     }
-    let rule = gauss_rule();
     // in units of `half`: u = w / half, the exponent lambda half (|u| - sign u_x), 1/|w| =
     // 1/(half |u|); (sqrt, not hypot: a third of the time, and |u| is of order 1 to 1e5 here)
     let (l, ua, ub, ux, uy) = (lambda * half, a / half, b / half, x / half, y / half);
+    let alpha = (2.0 * l * ua).max(l * ub);
+    let rule = &far_rules()[far_rule_points(ux.hypot(uy), alpha) - FAR_POINTS_MIN];
+    Some(gauss_product(rule, l, sign, (ua, ub), (ux, uy)) * ua * ub * half / (2.0 * PI * k))
+}
+
+/// The product rule `rule` x `rule` of exp(-l (|u| - sign u_x)) / |u| over the cell of
+/// half-widths (ua, ub) centred at (ux, uy) (w = target - source point, all in units of the
+/// cell's larger half-width), per unit area of the reference square [-1, 1]^2.
+#[inline]
+fn gauss_product(
+    rule: &GaussRule,
+    l: f64,
+    sign: f64,
+    (ua, ub): (f64, f64),
+    (ux, uy): (f64, f64),
+) -> f64 {
     let mut total = 0.0;
     for (xi, wi) in rule.nodes.iter().zip(&rule.weights) {
         let wx = ux - ua * xi;
@@ -380,12 +398,51 @@ fn far_cell_coefficient(
         }
         total += wi * inner;
     }
-    Some(total * ua * ub * half / (2.0 * PI * k))
+    total
 }
 
 /// The least distance of a cell's centre from the target, in the cell's larger half-widths,
 /// for [`far_cell_coefficient`].
 const FAR_CELLS: f64 = 6.0;
+/// The bound each error of [`far_cell_coefficient`]'s rule is kept below (relative): a tenth
+/// of the 8-point rule's worst (1.1e-12 at the largest exponent), so that the fewer points
+/// it takes elsewhere cost no accuracy the tables had.
+const FAR_RULE_ERROR: f64 = 1e-13;
+/// The fewest and most points of [`far_cell_coefficient`]'s rule along each direction.
+const FAR_POINTS_MIN: usize = 3;
+const FAR_POINTS_MAX: usize = 8;
+
+/// The points along each direction of [`far_cell_coefficient`]'s product rule for a cell whose
+/// centre is `d` of its larger half-widths from the target and over whose half-width the
+/// exponent varies by at most `alpha`: the fewest, from [`FAR_POINTS_MIN`], with the Gauss
+/// bound for the exponential, 2^(2n+1) (n!)^4 / ((2n + 1) ((2n)!)^3) alpha^2n e^alpha, and
+/// the 1/|w| factor's (2 d)^-2n both at most [`FAR_RULE_ERROR`]; [`FAR_POINTS_MAX`] where none
+/// does (the cells `far_cell_coefficient` takes have d >= 6 and alpha <= 2, where 8 points
+/// keep both within 1.1e-12).
+fn far_rule_points(d: f64, alpha: f64) -> usize {
+    (FAR_POINTS_MIN..FAR_POINTS_MAX)
+        .find(|&n| {
+            let m = n as i32;
+            // 2^(2n+1) (n!)^4 / ((2n + 1) ((2n)!)^3), from n!^4 / (2n)!^3 term by term
+            let mut c = 2f64.powi(2 * m + 1) / (2 * m + 1) as f64;
+            for i in 1..=n {
+                c *= (i as f64).powi(4) / (((2 * i - 1) * 2 * i) as f64).powi(3);
+            }
+            c * alpha.powi(2 * m) * alpha.exp() <= FAR_RULE_ERROR
+                && (2.0 * d).powi(-2 * m) <= FAR_RULE_ERROR
+        })
+        .unwrap_or(FAR_POINTS_MAX)
+}
+
+/// The Gauss-Legendre rules of [`FAR_POINTS_MIN`] to [`FAR_POINTS_MAX`] points, built once.
+fn far_rules() -> &'static [GaussRule] {
+    static RULES: OnceLock<Vec<GaussRule>> = OnceLock::new();
+    RULES.get_or_init(|| {
+        (FAR_POINTS_MIN..=FAR_POINTS_MAX)
+            .map(GaussRule::new)
+            .collect()
+    })
+}
 /// The largest variation of the kernel's exponent over a cell's half-width for
 /// [`far_cell_coefficient`].
 const FAR_EXPONENT: f64 = 2.0;
@@ -873,6 +930,68 @@ mod tests {
         // the rule must apply to most cells (else the test measures nothing)
         assert!(taken > 20_000, "far cells taken: {taken}");
         eprintln!("far cells by Gauss vs polar: {taken} cells, worst {worst:.2e}");
+        // and out to 2000 cells, where a slow body's cells take the fewest points (3 from
+        // ~60 half-widths at lambda dx <= 0.01): against the 8-point rule there (its bounds
+        // are far below 1e-13 so far out, where the polar integral's exact 1/r part loses
+        // digits to cancellation: 5.6e-11 at 2000 cells), to 1e-12
+        let mut fewest = FAR_POINTS_MAX;
+        let eight = far_rules().last().unwrap();
+        for &(dx, dy) in &[(1.0, 1.0), (1.0, 0.3), (0.4, 1.0)] {
+            let (a, b) = (0.5 * dx, 0.5 * dy);
+            for &lambda in &[0.0, 1e-3, 0.01, 0.1, 0.5, 2.0] {
+                for &sign in &[1.0, -1.0] {
+                    for di in [-2000i32, -700, -150, -45, -20, 0, 20, 45, 150, 700, 2000] {
+                        for dj in [-2000i32, -300, -31, 0, 31, 300, 2000] {
+                            let (x, y) = (di as f64 * dx, dj as f64 * dy);
+                            let Some(c) = far_cell_coefficient((x, y), (a, b), lambda, sign, k)
+                            else {
+                                continue;
+                            };
+                            let half = a.max(b);
+                            fewest = fewest.min(far_rule_points(
+                                x.hypot(y) / half,
+                                (2.0 * lambda * a).max(lambda * b),
+                            ));
+                            let (l, ua, ub) = (lambda * half, a / half, b / half);
+                            let p = gauss_product(eight, l, sign, (ua, ub), (x / half, y / half))
+                                * ua
+                                * ub
+                                * half
+                                / (2.0 * PI * k);
+                            let singular = 4.0 * a * b / (2.0 * PI * k * x.hypot(y));
+                            let err = (c - p).abs() / p.abs().max(singular);
+                            assert!(
+                                err < 1e-12,
+                                "dx {dx} dy {dy} lambda {lambda} sign {sign} ({di},{dj}): {c} vs {p}: {err:e}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(fewest, FAR_POINTS_MIN, "the far cells took no fewer points");
+    }
+
+    #[test]
+    fn far_rule_points_follow_distance_and_exponent() {
+        // 8 points at the rule's limits, fewer as the cell moves away or the exponent flattens,
+        // never fewer than FAR_POINTS_MIN
+        assert_eq!(far_rule_points(FAR_CELLS, FAR_EXPONENT), FAR_POINTS_MAX);
+        assert_eq!(far_rule_points(FAR_CELLS, 0.0), 7);
+        assert_eq!(far_rule_points(1e6, FAR_EXPONENT), FAR_POINTS_MAX);
+        assert_eq!(far_rule_points(1e6, 0.0), FAR_POINTS_MIN);
+        let mut last = FAR_POINTS_MAX;
+        for d in [6.0, 10.0, 20.0, 40.0, 100.0, 1000.0] {
+            let n = far_rule_points(d, 1e-3);
+            assert!(n <= last, "{n} points at d = {d}, {last} nearer");
+            last = n;
+        }
+        let mut last = FAR_POINTS_MAX;
+        for alpha in [2.0, 1.0, 0.5, 0.1, 0.01] {
+            let n = far_rule_points(1e6, alpha);
+            assert!(n <= last, "{n} points at alpha = {alpha}, {last} steeper");
+            last = n;
+        }
     }
 
     #[test]
