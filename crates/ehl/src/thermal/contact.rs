@@ -706,45 +706,52 @@ impl ThermalContact {
             for (&j, s) in rows.iter().zip(solved) {
                 sols[j] = Some(s);
             }
-            for (j, s) in sols.iter().enumerate() {
-                for i in 0..nx {
-                    let k = j * nx + i;
-                    let (a, b) = match s {
-                        Some(s) if wet[k] => (s.energy.q1[i - start[j]], s.energy.q2[i - start[j]]),
-                        _ => (0.0, 0.0),
-                    };
-                    q[0][k] = a;
-                    q[1][k] = b;
-                }
-            }
-            // how the film's wall fluxes answer the surface temperatures, where it was solved
-            // (`film_energy::wall_response`; a film that only conducts: -+ k_f / h)
+            // per row, in parallel (the softening's viscosities are ~10 ms of a ball's update
+            // serially): the film's wall fluxes, how they answer the surface temperatures where
+            // it was solved (`film_energy::wall_response`; a film that only conducts: -+ k_f /
+            // h), and how fast its heating falls as it warms: a film whose mean temperature
+            // rises by dT generates beta G dT less (G its heat per area, beta = -d ln eta / dT
+            // of the low-shear law at its mid-film temperature, an upper bound for a
+            // shear-thinning oil), half of it less into each surface
             let mut response = vec![[0.0; 4]; n];
-            for (j, s) in sols.iter().enumerate() {
-                let Some(s) = s else { continue };
-                for (i, g) in s.wall_response.iter().enumerate() {
-                    let k = j * nx + start[j] + i;
-                    if wet[k] {
-                        response[k] = *g;
-                    }
-                }
-            }
-            // and how fast its heating falls as it warms: a film whose mean temperature rises by
-            // dT generates beta G dT less (G its heat per area, beta = -d ln eta / dT of the
-            // low-shear law at its mid-film temperature, an upper bound for a shear-thinning
-            // oil), half of it less into each surface
             let mut softening = vec![0.0; n];
-            for (j, s) in sols.iter().enumerate() {
-                let Some(s) = s else { continue };
-                for (i, gen) in s.energy.generated.iter().enumerate() {
-                    let k = j * nx + start[j] + i;
-                    if !wet[k] || !(*gen > 0.0) {
-                        continue;
-                    }
-                    let tm = self.rule.interpolate(&s.t[i * nz..(i + 1) * nz], 0.5);
-                    let beta = self.laws.viscosity_temperature_coefficient(pp[k], tm);
-                    softening[k] = 0.25 * beta * gen;
-                }
+            {
+                use rayon::prelude::*;
+                let [q1, q2] = &mut q;
+                let (rule, laws) = (&self.rule, &self.laws);
+                q1.par_chunks_mut(nx)
+                    .zip(q2.par_chunks_mut(nx))
+                    .zip(response.par_chunks_mut(nx))
+                    .zip(softening.par_chunks_mut(nx))
+                    .zip(sols.par_iter())
+                    .enumerate()
+                    .for_each(|(j, ((((q1, q2), response), softening), s))| {
+                        let row = j * nx;
+                        q1.fill(0.0);
+                        q2.fill(0.0);
+                        let Some(s) = s else { return };
+                        let at = start[j];
+                        for i in at..len[j] {
+                            if wet[row + i] {
+                                q1[i] = s.energy.q1[i - at];
+                                q2[i] = s.energy.q2[i - at];
+                            }
+                        }
+                        for (i, g) in s.wall_response.iter().enumerate() {
+                            if wet[row + at + i] {
+                                response[at + i] = *g;
+                            }
+                        }
+                        for (i, gen) in s.energy.generated.iter().enumerate() {
+                            let k = row + at + i;
+                            if !wet[k] || !(*gen > 0.0) {
+                                continue;
+                            }
+                            let tm = rule.interpolate(&s.t[i * nz..(i + 1) * nz], 0.5);
+                            let beta = laws.viscosity_temperature_coefficient(pp[k], tm);
+                            softening[at + i] = 0.25 * beta * gen;
+                        }
+                    });
             }
             // the range the surfaces may take (see update_surfaces): the film's iterate (its
             // surface points included), the surfaces before this update and the inlet's, the
@@ -1082,13 +1089,18 @@ impl ThermalContact {
         start: &[usize],
         h: &[f64],
     ) -> Vec<f64> {
+        use rayon::prelude::*;
         let (nx, nz) = (self.grid.nx, self.nz());
         let mut my = vec![f64::NAN; self.grid.len() * nz];
-        for (j, s) in lines.iter().enumerate() {
-            let Some(s) = s else { continue };
-            let row = j * nx + start[j];
-            row_side_mass_flux(&mut my, nz, row, h, &s.coefficients.density, &s.profiles);
-        }
+        my.par_chunks_mut(nx * nz)
+            .zip(lines.par_iter())
+            .enumerate()
+            .for_each(|(j, (my, s))| {
+                if let Some(s) = s {
+                    let h = &h[j * nx..(j + 1) * nx];
+                    row_side_mass_flux(my, nz, start[j], h, &s.coefficients.density, &s.profiles);
+                }
+            });
         my
     }
 
@@ -1466,8 +1478,9 @@ fn film_fields(g: &Grid, p: &[f64], h: &[f64], active: &[bool]) -> (Vec<f64>, Ve
 }
 
 /// The y mass flux per unit zeta, h rho v (kg/(m s)), of one row's film into `my` (nz values
-/// per cell, cell-major): its first cell `first` (a grid index), films `h` per grid cell, the
-/// density at its points (cells * nz) and its velocity profiles.
+/// per cell, cell-major, indexed as `h`): its first cell `first` (an index into `h`), films `h`
+/// per cell (a grid row, or the whole grid), the density at its points (cells * nz) and its
+/// velocity profiles.
 fn row_side_mass_flux(
     my: &mut [f64],
     nz: usize,
