@@ -429,23 +429,23 @@ fn newton_settles_the_sliding_line_the_fixed_point_did_not() {
     assert!(balance.abs() < 0.01, "energy balance {balance}");
 }
 
-/// A sliding line whose film is held by its limiting shear stress settles with Newton's
-/// method on (the default) as with the fixed point alone, on the same solution: the example
-/// line loaded to p_h = 2 GPa (W = 5e-4) at U = 1e-11 (1.1 m/s), Lambda = 0.06, SRR 0.5, 256
-/// cells. The cap holds: its friction coefficient is at least 5 % under the same line's
-/// without a limit (measured 0.0514 against 0.0568). Both must converge, with Newton in
-/// under 20 outer iterations (measured 14 and 5 Newton steps; the fixed point alone 20), and
-/// agree on friction and central film within 1e-5 and the largest film temperature within
-/// 0.01 K, well inside the fixed point's stops on the factors (1e-4) and temperatures
-/// (0.05 K) (measured 2.5e-6, 1.3e-6, 2.4e-4 K). Until 2026-12-05 the case was Lambda = 0.04
-/// (13 outer iterations and 2 Newton steps, the fixed point alone 16, earlier 37): since the
-/// surface temperatures' linear solve is preconditioned (`ThermalContact::update`) its
-/// fixed point settles in 15 outer iterations and the polish is never asked for, which this
-/// test must exercise. Before the fixed point's columns matched their
-/// flux with the capped profile, the two methods solved different equations where the cap
-/// held (the columns' gradient a_capped / a_free times the pressure's): handed to Newton,
-/// the line was polished again every outer iteration to the limit of 80 (measured on SRR 0.2
-/// to 1 at Lambda 0.04 and 0.06), and the fixed point's friction was 1.1 % lower (0.03791).
+/// A sliding line whose film is held by its limiting shear stress settles with Newton's method on
+/// (the default) as with the fixed point alone, on the same solution: the example line loaded to
+/// p_h = 2 GPa (W = 5e-4) at U = 1e-11 (1.1 m/s), Lambda = 0.06, SRR 0.5, 256 cells. The cap holds:
+/// its friction coefficient is at least 5 % under the same line's without a limit (measured 0.0514
+/// against 0.0568). Both must converge, with Newton in under 20 outer iterations (measured 14 and 5
+/// Newton steps; the fixed point alone 20), and agree on friction and central film within 1e-5 and
+/// the largest film temperature within 0.01 K, well inside the fixed point's stops on the factors
+/// (1e-4) and temperatures (0.05 K) (measured 2.5e-6, 1.3e-6, 2.4e-4 K; all these figures at
+/// bdf83d4). Until 2026-12-05 the case was Lambda = 0.04 (13 outer iterations and 2 Newton steps,
+/// the fixed point alone 16 at the last measurement, 37 in an older one): since the surface
+/// temperatures' linear solve is preconditioned (`ThermalContact::update_surfaces`) its fixed point
+/// settles in 15 outer iterations and the polish is never asked for, which this test must exercise;
+/// a faster fixed point may take this case from it again. Before the fixed point's columns matched
+/// their flux with the capped profile, the two methods solved different equations where the cap
+/// held (the columns' gradient a_capped / a_free times the pressure's): handed to Newton, the line
+/// was polished again every outer iteration to the limit of 80 (measured on SRR 0.2 to 1 at Lambda
+/// 0.04 and 0.06), and the fixed point's friction was 1.1 % lower (0.03791).
 /// ~1 s.
 #[test]
 fn a_line_held_by_its_limiting_shear_stress_settles_on_one_solution() {

@@ -869,8 +869,9 @@ impl ThermalContact {
     /// by GMRES (each product two convolutions), preconditioned by the same equations with
     /// each R_b cut to its own cell's coefficient (a 2 x 2 block a cell: the film's local
     /// tie between the two surfaces and each body's self-heating; measured on
-    /// `ehl_thermal_ball.toml`: 88 -> 57 GMRES iterations over its 7 surface solves, the
-    /// results unchanged within the solve's own tolerance). Only each column's own answer and the
+    /// `ehl_thermal_ball.toml`: 88 -> 57 GMRES iterations over its 7 surface solves, before
+    /// its first update's looser stop, the results unchanged within the solve's own
+    /// tolerance). Only each column's own answer and the
     /// heating's temperature slope are linearised: what a surface change does downstream
     /// follows in the next film iteration. With k_f / h in place of the column's answer, a
     /// glass disc at rest under a ball sliding at 2 m/s went 66 K cold in the first update
