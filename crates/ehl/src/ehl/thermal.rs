@@ -1019,7 +1019,7 @@ fn film_stop(residuals: &[f64], rough: f64, factor_tol: f64) -> f64 {
 /// ([`LOOSE_FILM_MAX`]), else `rough`. The first update answers the isothermal pressure, whose
 /// factors it then moves by several per cent (16 % on `ehl_thermal_ball.toml`), so its
 /// surfaces to 1e-3 K are work the next update throws away. Measured 2026-12-05 (BENCHMARKS.md,
-/// "The first update's surfaces"): that ball 3 -> 2 surface iterations at its first update, the
+/// "The ball's thermal run"): that ball 3 -> 2 surface iterations at its first update, the
 /// same 4 outer iterations, 7 -> 5 Newton steps (its third outer iteration's residual 3.2e-4 ->
 /// 5.4e-5); the thesis roller 256 x 512 and the example line as before. The later updates keep
 /// `rough`: loosened like the film's stop ([`film_stop`]), the ball took 5 outer iterations
