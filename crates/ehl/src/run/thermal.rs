@@ -49,7 +49,20 @@ pub fn solve(
     iso: &EhlResult,
     observer: &mut (dyn FnMut(usize, f64) + Send),
 ) -> Result<ThermalRun> {
-    let mut contact = contact_for(case, problem.grid)?;
+    let contact = contact_for(case, problem.grid)?;
+    solve_in(case, problem, params, iso, contact, observer)
+}
+
+/// [`solve`] with the case's contact `contact` already built ([`contact_for`] on
+/// `problem.grid`).
+pub fn solve_in(
+    case: &Case,
+    problem: &EhlProblem,
+    params: &EhlParams,
+    iso: &EhlResult,
+    mut contact: ThermalContact,
+    observer: &mut (dyn FnMut(usize, f64) + Send),
+) -> Result<ThermalRun> {
     let mut result = solve_thermal(
         problem,
         params,
