@@ -262,8 +262,9 @@ const ETA_WARM: f64 = 1e-2;
 /// within 2.3e-7 relative of exponent 0's; BENCHMARKS.md): the thesis roller 256 x 512
 /// 214 / 209 / 186 (and with `[thermal]` the fixed point's 10 Newton steps and 224 GMRES
 /// iterations -> 7 and 175 at 0.5, 192 at 0.75), at 512 x 128 80 / 82 / 70, the ball on
-/// glass 110 / 88 / 75, `ehl_friction_line.toml` 466 / 408 / 390, the glass ball at 5 m/s with `[thermal]` 668 / 569 / 524, the single pit
-/// over 30 steps (256^2) 608 / 610 / 569, the transient ball dent 4166 / 3844 / 3436; the
+/// glass 110 / 88 / 75, `ehl_friction_line.toml` 466 / 408 / 390, the glass ball at 5 m/s
+/// with `[thermal]` 668 / 569 / 524, the single pit over 30 steps (256^2) 608 / 610 / 569,
+/// the transient ball dent 4166 / 3844 / 3436; the
 /// Carreau roller at SRR 0.3 with `[thermal]` 150 / 146 / 159 (one Newton step more), the
 /// thermal line 1132 / 1072 / 1121. The transient line contacts' whole-Jacobian path keeps
 /// exponent 0 (its GMRES is a few iterations a step).

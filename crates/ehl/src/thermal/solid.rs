@@ -345,13 +345,12 @@ fn polar_cell_coefficient(
 /// Gauss error bound for an exponential of half-range alpha, 2^(2n+1) (n!)^4 / ((2n + 1)
 /// ((2n)!)^3) alpha^2n e^alpha, is 1.1e-12 for n = 8 at alpha = 2; the 1/|w| factor's, from
 /// its singularity at d half-widths (its Bernstein ellipse, rho ~ 2 d), ~ (2 d)^-2n, 5e-18 for
-/// n = 8 at d = FAR_CELLS. n is the fewest points, from 3 to 8, that keep these and their
-/// product's estimate below [`FAR_RULE_ERROR`] ([`far_rule_points`]), 8 where none does: a
-/// distant cell of a slow body needs 3 where a near one needs 8. Test
-/// `far_cells_by_gauss_match_the_polar_integral` measures the rule against the adaptive one,
-/// test `far_rule_points_keep_the_eight_point_accuracy` against the 8-point rule. The lengths are taken in units of the larger half-width
-/// (squares of lengths in metres would underflow below 1e-154 m). None where the rule does not
-/// apply.
+/// n = 8 at d = FAR_CELLS. n is the fewest points, from 3 to 8, that keep these and their product's
+/// estimate below [`FAR_RULE_ERROR`] ([`far_rule_points`]), 8 where none does: a distant cell of a
+/// slow body needs 3 where a near one needs 8. Test `far_cells_by_gauss_match_the_polar_integral`
+/// measures the rule against the adaptive one, test `far_rule_points_keep_the_eight_point_accuracy`
+/// against the 8-point rule. The lengths are taken in units of the larger half-width (squares of
+/// lengths in metres would underflow below 1e-154 m). None where the rule does not apply.
 ///
 /// Most of a table is far cells: the thesis roller's at 256 x 512 (261 632 coefficients,
 /// lambda dx = 1.1) took 0.46 s by the polar integral alone, 0.12 s with the 8-point rule
@@ -423,13 +422,15 @@ const FAR_POINTS_MAX: usize = 8;
 /// within ~1e-12; no n below 8 meets the estimates once alpha > ~1.75):
 ///
 /// * the Gauss bound for the exponential alone, 2^(2n+1) (n!)^4 / ((2n + 1) ((2n)!)^3)
-///   alpha^2n e^alpha;
-/// * the whole integrand's on a Bernstein ellipse of parameter rho (the rule's error ~
-///   rho^-2n times the integrand's largest value there): the 1/|w| singularity limits rho to
-///   2 d, and the exponential grows to ~e^(alpha rho / 2) at the ellipse's half-height, so
-///   rho^-2n e^(alpha rho / 2) with rho = min(2 d, 4 n / alpha) (the minimiser). The two
-///   factors' bounds taken apart missed their product: a cell at d = 6.06 with alpha = 0.75
-///   took 6 points and was 1.3e-12 off (found in review).
+///   alpha^2n e^alpha (the n-point Gauss-Legendre rule's classical error term with f^(2n) <=
+///   alpha^2n e^alpha; Davis & Rabinowitz, Methods of Numerical Integration, 1984);
+/// * the whole integrand's on a Bernstein ellipse of parameter rho (the rule's error ~ rho^-2n
+///   times the integrand's largest value there, for a function analytic inside it; Trefethen,
+///   Approximation Theory and Approximation Practice, 2013, ch. 19, constants dropped): the 1/|w|
+///   singularity limits rho to 2 d, and the exponential grows to ~e^(alpha rho / 2) at the
+///   ellipse's half-height, so rho^-2n e^(alpha rho / 2) with rho = min(2 d, 4 n / alpha) (the
+///   minimiser). The two factors' bounds taken apart missed their product: a cell at d = 6.06 with
+///   alpha = 0.75 took 6 points and was 1.3e-12 off (found in review).
 fn far_rule_points(d: f64, alpha: f64) -> usize {
     (FAR_POINTS_MIN..FAR_POINTS_MAX)
         .find(|&n| {
