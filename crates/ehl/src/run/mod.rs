@@ -1013,23 +1013,25 @@ fn solve_ehl(
     // core idle; its error, if any, is reported only where the start converged, as when it
     // was built after (a cancel during the start waits for the build: ~0.3 s at most on the
     // thesis roller at 256 x 512)
-    let (mut r, contact) = rayon::join(
-        || {
-            crate::ehl::solve_steady_with_fallback_observed(
-                &problem,
-                &start_params,
-                // (the fraction unknown: the first start may have shown more than any fixed
-                // figure)
-                &|| progress.report(f64::NAN, "EHL, second start"),
-                &mut observer,
-            )
-        },
-        || {
-            case.thermal
-                .is_some()
-                .then(|| thermal::contact_for(case, grid))
-        },
-    );
+    let mut start = || {
+        crate::ehl::solve_steady_with_fallback_observed(
+            &problem,
+            &start_params,
+            // (the fraction unknown: the first start may have shown more than any fixed figure)
+            &|| progress.report(f64::NAN, "EHL, second start"),
+            &mut observer,
+        )
+    };
+    // (an isothermal run solves on the calling thread as before: moved into the pool by the
+    // join, its criterion solves ran 7-11 % slower, `thermal_roller/isothermal_128x64` and
+    // `thermal_line/isothermal_512`; a thermal run's did not, `thermal_line/thermal_256` 6.7 %
+    // faster with the join than without it, `thermal_roller/thermal_128x64` the same)
+    let (mut r, contact) = if case.thermal.is_some() {
+        let (r, contact) = rayon::join(start, || thermal::contact_for(case, grid));
+        (r, Some(contact))
+    } else {
+        (start(), None)
+    };
     // [thermal]: the temperature fixed point from the isothermal solution
     let mut thermal_run = None;
     if let (Some(contact), true) = (contact, r.converged) {
