@@ -7,6 +7,9 @@
 //!   removed;
 //! * `thermal_roller`: the thesis ch. 2 roller (`examples/ehl_thesis_ch2_roller.toml`) with the
 //!   same `[thermal]` table, Carreau (G = 4.5 MPa, n = 0.57) at SRR 0.3 on 128 x 64 cells;
+//! * `thermal_ball`: `examples/ehl_thermal_ball.toml` (a steel ball, R = 12.5 mm, on a glass
+//!   disc at 15 N, 0.09 m/s, SRR 0.5, 129 x 129 cells), one of the two cases the 3x
+//!   bound names, thermal and with `[thermal]` removed;
 //! * `thermal_film`: one film solve of a 256-cell line (`thermal::film_energy::solve_line`) at
 //!   the thermal line's laws: h from 0.5 to 3 um, 1 GPa, dp/dx = 1e13 Pa/m, SRR 0.3 at 6 m/s.
 //!
@@ -73,6 +76,20 @@ fn thermal_roller(c: &mut Criterion) {
     );
 }
 
+fn thermal_ball(c: &mut Criterion) {
+    let thermal = load("ehl_thermal_ball.toml", &[]);
+    let mut iso = thermal.clone();
+    iso.thermal = None;
+    bench_solves(
+        c,
+        "thermal_ball",
+        vec![
+            ("thermal_129x129".to_string(), thermal),
+            ("isothermal_129x129".to_string(), iso),
+        ],
+    );
+}
+
 fn thermal_film(c: &mut Criterion) {
     let case = load("ehl_thermal_line.toml", &[]);
     let laws = ThermalLaws::new(
@@ -122,5 +139,11 @@ fn thermal_film(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, thermal_line, thermal_roller, thermal_film);
+criterion_group!(
+    benches,
+    thermal_line,
+    thermal_roller,
+    thermal_ball,
+    thermal_film
+);
 criterion_main!(benches);
