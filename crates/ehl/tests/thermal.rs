@@ -1172,6 +1172,38 @@ fn a_weakly_coupled_roller_settles_at_its_fourth_update() {
     assert_within_film_tolerance("roller 256 x 128", &d, &t);
 }
 
+/// The glass-disc ball example (`ehl_thermal_ball.toml`, 129^2) settles at its third update:
+/// its factors' residuals fall 0.16 -> 5.2e-3 -> 5.4e-5, so after the second the next is
+/// expected at 1.6e-4, within 3 times the 1e-4 stop, and that outer iteration's Reynolds solve
+/// goes to the case's tolerance (`ehl::thermal`'s `near_end`); its third update, after cells
+/// solved for the first time at the second, changed the film temperatures by 1.0e-3 K, which
+/// the residuals' ratio (0.01) estimates, not 0.99 (a fourth update). Before 2026-12-05 (eighth
+/// session) it took 4. And what it stops at lies within the film tolerance (1e-4) of a run to a
+/// 1e-7 factors' stop (measured 3.3e-6 central, 6.2e-6 minimum film, 1.4e-5 friction; the
+/// tight run 11 outer iterations). ~2 s.
+#[test]
+fn the_ball_example_settles_at_its_third_update() {
+    let text = include_str!("../../../examples/ehl_thermal_ball.toml");
+    let run = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let s = solve(&parse_str(text, "ehl_thermal_ball.toml", &sets).unwrap());
+        assert!(s.summary.converged, "{sets:?}: {}", s.summary.termination);
+        s.summary
+    };
+    let d = run(&[]);
+    let outer = d.thermal_iterations.unwrap();
+    assert!(outer <= 3, "{outer} outer iterations");
+    let t = run(&["thermal.film_tolerance=1e-7", "thermal.tolerance=1e-5"]);
+    println!(
+        "default {outer} outer, tight {}: central {:.2e}, minimum {:.2e}, friction {:.2e}",
+        t.thermal_iterations.unwrap(),
+        d.central_film_m.unwrap() / t.central_film_m.unwrap() - 1.0,
+        d.min_film_m.unwrap() / t.min_film_m.unwrap() - 1.0,
+        d.friction_coefficient.unwrap() / t.friction_coefficient.unwrap() - 1.0,
+    );
+    assert_within_film_tolerance("ball example", &d, &t);
+}
+
 /// The EHL-FBNS ball (0.09 m/s, 0.2 um film) with sliding, 64 x 64 cells. Its bodies are slow
 /// and its film thin: the film's conductance k_f / h is ~70 times the bodies' under the
 /// contact, and the plain film-body iteration (each surface taking the bodies' response to

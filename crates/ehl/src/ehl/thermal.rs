@@ -93,8 +93,9 @@ pub struct ThermalParams {
     pub factor_tolerance: f64,
     /// once the fixed point is near its end (the factors' residual within 10 times
     /// `factor_tolerance`, or the one the next update is expected to leave within 3 times:
-    /// `near_end`), the temperature solves go on to at most this many film iterations and twice their body iterations
-    /// (early outer iterations need only a rough temperature): their own error otherwise
+    /// `near_end`), the temperature solves go on to at most this many film iterations and
+    /// twice their body iterations (early outer iterations need only a rough temperature):
+    /// their own error otherwise
     /// kept the residual above the stop (the same line in pure rolling at U = 1.1e-10, 11
     /// points across the film: 0.2 K left after 5 film iterations, residual cycling at
     /// 5e-4 to 5e-3)
@@ -667,7 +668,8 @@ fn run(
                 }
             }
         }
-        if near_end(&residuals, thermal.factor_tolerance) {
+        let at_end = near_end(&residuals, thermal.factor_tolerance);
+        if at_end {
             contact.options.line.max_iter = rough.line.max_iter.max(thermal.final_film_iterations);
             contact.options.max_surface_iterations = 2 * rough.max_surface_iterations;
         }
@@ -737,7 +739,7 @@ fn run(
         let tol = reynolds_tolerance(
             params.tolerance,
             residual,
-            near_end(&residuals, thermal.factor_tolerance),
+            at_end,
             start_imbalance(&sys, &st),
         );
         tight = tol <= params.tolerance;
@@ -948,10 +950,10 @@ fn remaining_outer(residuals: &[f64], tol: f64) -> f64 {
 /// temperature update throws away, so [`LOOSE_REYNOLDS`] x `residual`, at most
 /// [`LOOSE_REYNOLDS_MAX`] and at most [`REYNOLDS_REDUCTION`] x `start` (the relative mass
 /// imbalance the new factors leave at the last pressure), never tighter than the case's `tol`,
-/// and `tol` itself [`near_end`]: the solve before the fixed point stops is then to the case's
-/// tolerance (the driver stops only after such a solve).
-fn reynolds_tolerance(tol: f64, residual: f64, near_end: bool, start: f64) -> f64 {
-    if near_end {
+/// and `tol` itself `at_end` (the fixed point [`near_end`]): the solve before the fixed point
+/// stops is then to the case's tolerance (the driver stops only after such a solve).
+fn reynolds_tolerance(tol: f64, residual: f64, at_end: bool, start: f64) -> f64 {
+    if at_end {
         tol
     } else {
         (LOOSE_REYNOLDS * residual)
@@ -995,9 +997,13 @@ const LOOSE_REYNOLDS: f64 = 0.01;
 const LOOSE_REYNOLDS_MAX: f64 = 1e-3;
 
 /// How many times its stop the factors' residual may be for the fixed point to count as near
-/// its end ([`near_end`]): from there each update's film iteration runs to its own stop
-/// ([`film_stop`]) and with [`ThermalParams::final_film_iterations`], and each Reynolds solve
-/// to the case's tolerance ([`reynolds_tolerance`]), since the next update may be the last.
+/// its end ([`near_end`]): from there each update's film iteration runs with
+/// [`ThermalParams::final_film_iterations`] and each Reynolds solve to the case's tolerance
+/// ([`reynolds_tolerance`]), since the next update may be the last. The film's stop
+/// ([`film_stop`]) takes the film's own stop from the last residual alone within this; where
+/// only the expected residual is within [`EXPECTED_NEAR_END`] times the stop, its
+/// [`LOOSE_FILM`] x the expected residual is at most 0.3 K x the factors' stop (3e-5 K at the
+/// default 1e-4), below the film's own default stop (1e-4 K), which it then takes.
 const NEAR_END: f64 = 10.0;
 
 /// How many times its stop the residual the next update is expected to leave
@@ -1010,12 +1016,13 @@ const NEAR_END: f64 = 10.0;
 /// 10 times the stop, had to be followed by a third to the case's tolerance and a fourth
 /// update to check it; its expected residual there was 1.6e-4. A tight solve that is not the
 /// last costs one or two Newton steps; one that is saves an update and a Reynolds solve, less
-/// the Newton step it takes more itself (on that ball the loop's phases 378 -> 350 ms). The
+/// the Newton step it takes more itself (on that ball 69 ms saved, 43 ms more: the loop's
+/// traced phases 378 -> 352 ms). The
 /// ratio of consecutive residuals is a rough estimate of the next one: over the cases traced
 /// the next ratio was 3x below it (that ball: 0.032, then 0.0105) or up to 1.6x above it
 /// (the Table 3.7 line at its tenth outer iteration 0.24, then 0.39; the Carreau roller at
 /// 256 x 128, SRR 0.3, at its fifth 0.21, then 0.32). With 10 (as [`NEAR_END`]) in place of
-/// 3 those two took one and two Newton steps more (expected 4.7e-4 and 6.1e-4, and not the
+/// 3 those two took two and one Newton steps more (expected 4.7e-4 and 6.1e-4, and not the
 /// last). Measured 2026-12-05 (BENCHMARKS.md, "Near the end one outer iteration sooner").
 const EXPECTED_NEAR_END: f64 = 3.0;
 
@@ -1422,6 +1429,8 @@ mod tests {
         assert!(!near_end(&[5.2e-3], stop));
         assert!(!near_end(&[], stop));
         assert!(!near_end(&[f64::INFINITY, 2e-3], stop));
+        assert!(!near_end(&[f64::NAN], stop));
+        assert!(!near_end(&[1e-2, f64::NAN], stop));
     }
 
     /// The remaining outer iterations of a geometric residual sequence are its own count:
