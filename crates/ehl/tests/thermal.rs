@@ -1468,6 +1468,7 @@ fn an_eyring_ball_whose_fixed_point_expands_settles_with_newton() {
 ///   residuals of 5-100 K at the cells leaving the spike, and after 80 outer iterations the
 ///   film's extent was still moving (checked: with the old gradient this test fails there;
 ///   docs/thermal.md, "Fast balls"). Pure rolling at 10 m/s settled before too.
+///
 /// Both: the energy balance within the 1 %. ~10 s.
 #[test]
 fn a_fast_ball_cools_its_oil_leaving_the_spike_and_settles() {
