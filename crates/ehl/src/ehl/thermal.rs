@@ -95,10 +95,9 @@ pub struct ThermalParams {
     /// `factor_tolerance`, or the one the next update is expected to leave within 3 times:
     /// `near_end`), the temperature solves go on to at most this many film iterations and
     /// twice their body iterations (early outer iterations need only a rough temperature):
-    /// their own error otherwise
-    /// kept the residual above the stop (the same line in pure rolling at U = 1.1e-10, 11
-    /// points across the film: 0.2 K left after 5 film iterations, residual cycling at
-    /// 5e-4 to 5e-3)
+    /// their own error otherwise kept the residual above the stop (the same line in pure
+    /// rolling at U = 1.1e-10, 11 points across the film: 0.2 K left after 5 film iterations,
+    /// residual cycling at 5e-4 to 5e-3)
     pub final_film_iterations: usize,
     /// a steady solve whose temperature solve fails (a film temperature running away, the
     /// density negative) is started again with this many points across the film, where the
@@ -590,13 +589,13 @@ fn run(
         // the film does): near the end the change is the temperature solves' own noise. The
         // thesis roller + `[thermal]` (the example's 512 x 128, pure rolling) changed by
         // 1.20e-3 and then 1.66e-3 K (against a 0.05 K tolerance) while its factors' residual
-        // fell 2.5e-4 -> 5.9e-5, and 0.99 held it one more outer iteration. A larger change
-        // that grew (an overshoot, damped below) or followed cells solved for the first time
-        // keeps 0.99. A change within the tolerance after cells solved for the first time
-        // (whose change is infinite: no ratio) takes the residuals' ratio as well: the factors'
-        // residual still measures the distance to the fixed point there, and 0.99 asked 99
-        // times the change of the tolerance. `ehl_thermal_ball.toml` solves new cells at its
-        // second update; at its third its change was 1.0e-3 K (against 0.05 K) and its
+        // fell 2.5e-4 -> 5.9e-5, and 0.99 held it one more outer iteration. A change above the
+        // tolerance that grew (an overshoot, damped below) or followed cells solved for the
+        // first time keeps 0.99. A change within the tolerance after cells solved for the first
+        // time (whose change is infinite: no ratio) takes the residuals' ratio as well: the
+        // factors' residual still measures the distance to the fixed point there, and 0.99
+        // asked 99 times the change of the tolerance. `ehl_thermal_ball.toml` solves new cells
+        // at its second update; at its third its change was 1.0e-3 K (against 0.05 K) and its
         // residual 5.4e-5 (5.2e-3 before it), and 0.99 held it for a fourth update.
         let falling = prev.is_finite() && change < prev;
         let rho = if falling { change / prev } else { 0.99 };
@@ -1017,9 +1016,9 @@ const NEAR_END: f64 = 10.0;
 /// update to check it; its expected residual there was 1.6e-4. A tight solve that is not the
 /// last costs one or two Newton steps; one that is saves an update and a Reynolds solve, less
 /// the Newton step it takes more itself (on that ball 69 ms saved, 43 ms more: the loop's
-/// traced phases 378 -> 352 ms). The
-/// ratio of consecutive residuals is a rough estimate of the next one: over the cases traced
-/// the next ratio was 3x below it (that ball: 0.032, then 0.0105) or up to 1.6x above it
+/// traced phases 378 -> 352 ms). The ratio of consecutive residuals is a rough estimate of
+/// the next one: over the cases traced the next ratio was 3x below it (that ball: 0.032,
+/// then 0.0105) or up to 1.6x above it
 /// (the Table 3.7 line at its tenth outer iteration 0.24, then 0.39; the Carreau roller at
 /// 256 x 128, SRR 0.3, at its fifth 0.21, then 0.32). With 10 (as [`NEAR_END`]) in place of
 /// 3 those two took two and one Newton steps more (expected 4.7e-4 and 6.1e-4, and not the
