@@ -172,6 +172,9 @@ pub struct Summary {
     /// own)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal_newton_steps: Option<usize>,
+    /// `[thermal]`, steady runs: where the run's wall time went (s), phase by phase
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal_time_s: Option<ThermalTimeSplit>,
     /// `[thermal]`, transient runs: the largest film temperature over the travel (K) and the
     /// x_p (m) of its step
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -207,6 +210,29 @@ impl Summary {
     pub fn requested_friction_failed(&self) -> bool {
         self.friction_failed && self.friction_requested
     }
+}
+
+/// Where a steady thermal run's wall time went (`summary.json`: `thermal_time_s`, seconds).
+/// The phases of the thermal fixed point are those of
+/// [`crate::ehl::thermal::ThermalTimes`]; its outer iterations start from the isothermal
+/// solution, solved first.
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct ThermalTimeSplit {
+    /// the dry start and the isothermal EHL solve the fixed point starts from (to
+    /// `thermal::START_TOLERANCE`), with the bodies' moving-heat-source tables built beside it
+    pub isothermal_start: f64,
+    /// the film's energy equation across z (the grid lines' temperature solves)
+    pub film_energy: f64,
+    /// the bodies' surface temperatures (moving heat source matched to the film)
+    pub body_temperature: f64,
+    /// the generalized Reynolds factors from the temperatures
+    pub reynolds_factors: f64,
+    /// the Newton solves of the Reynolds equation with the factors
+    pub reynolds: f64,
+    /// Newton's method on the coupled problem (`thermal.coupled_newton`)
+    pub coupled_newton: f64,
+    /// the rest of the fixed point (mixing, residuals, the final fields)
+    pub other: f64,
 }
 
 /// The stress figures of one body (`summary.json`: `stress`).

@@ -1196,6 +1196,7 @@ fn settles_within_outer(text: &str, file: &str, sets: &[&str], most: usize, labe
     let d = run(&[]);
     let outer = d.thermal_iterations.unwrap();
     assert!(outer <= most, "{label}: {outer} outer iterations");
+    assert_time_split(label, &d);
     let t = run(&["thermal.film_tolerance=1e-7", "thermal.tolerance=1e-5"]);
     println!(
         "{label}: {outer} outer (tight {}): central {:.2e}, minimum {:.2e}, friction {:.2e}",
@@ -1205,6 +1206,38 @@ fn settles_within_outer(text: &str, file: &str, sets: &[&str], most: usize, labe
         d.friction_coefficient.unwrap() / t.friction_coefficient.unwrap() - 1.0,
     );
     assert_within_film_tolerance(label, &d, &t);
+}
+
+/// The summary's `thermal_time_s` of a converged steady run: every phase finite and not
+/// negative, the film's energy equation, the bodies and the Reynolds solves each took time,
+/// and the phases, disjoint spans of the run, add up to no more than its `wall_time_s` (a
+/// phase counted twice, such as the updates inside a coupled Newton polish counted as film
+/// time as well, would break it).
+fn assert_time_split(label: &str, s: &ehl::solution::Summary) {
+    let t = s.thermal_time_s.expect("thermal_time_s");
+    let phases = [
+        t.isothermal_start,
+        t.film_energy,
+        t.body_temperature,
+        t.reynolds_factors,
+        t.reynolds,
+        t.coupled_newton,
+        t.other,
+    ];
+    assert!(
+        phases.iter().all(|v| v.is_finite() && *v >= 0.0),
+        "{label}: {t:?}"
+    );
+    assert!(
+        t.film_energy > 0.0 && t.body_temperature > 0.0 && t.reynolds > 0.0,
+        "{label}: {t:?}"
+    );
+    let sum: f64 = phases.iter().sum();
+    assert!(
+        sum <= s.wall_time_s,
+        "{label}: phases {sum} s of {} s: {t:?}",
+        s.wall_time_s
+    );
 }
 
 /// The EHL-FBNS ball (0.09 m/s, 0.2 um film) with sliding, 64 x 64 cells. Its bodies are slow

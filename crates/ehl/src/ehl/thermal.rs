@@ -412,6 +412,53 @@ pub struct ThermalResult {
     /// Newton steps of the coupled method (`ThermalParams::coupled_newton`) in the polishes
     /// that reached a solution
     pub coupled_newton_steps: usize,
+    /// where the fixed point's wall time went
+    pub times: ThermalTimes,
+}
+
+/// Where a thermal fixed point spent its wall time (s), phase by phase, over all its outer
+/// iterations (and both runs of a solve started again with more points across the film).
+/// Issue 13 asks a thermal solve to say where its time goes: the energy equation, the solid
+/// temperatures, the coupling.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ThermalTimes {
+    /// the film's energy equation: the grid lines' temperature solves across z, their wall
+    /// fluxes and each update's set-up (`ThermalContact::update` less its body part)
+    pub film_energy_s: f64,
+    /// the bodies' surface temperatures: the moving-heat-source responses to the film's
+    /// fluxes, matched to the film (`ThermalContact::body_time_s`)
+    pub body_temperature_s: f64,
+    /// the generalized Reynolds factors from the temperatures
+    /// (`ThermalContact::reynolds_factors`)
+    pub reynolds_factors_s: f64,
+    /// the Newton solves of the Reynolds equation with the factors (the coupling's other
+    /// half; the isothermal solve has the same kind of solve)
+    pub reynolds_s: f64,
+    /// Newton's method on the coupled problem (`ThermalParams::coupled_newton`), everything
+    /// in it
+    pub coupled_newton_s: f64,
+    /// the fixed point's whole wall time, these phases and the rest (mixing, residuals, the
+    /// final fields)
+    pub total_s: f64,
+}
+
+impl ThermalTimes {
+    fn add(&mut self, o: &ThermalTimes) {
+        self.film_energy_s += o.film_energy_s;
+        self.body_temperature_s += o.body_temperature_s;
+        self.reynolds_factors_s += o.reynolds_factors_s;
+        self.reynolds_s += o.reynolds_s;
+        self.coupled_newton_s += o.coupled_newton_s;
+        self.total_s += o.total_s;
+    }
+}
+
+/// Runs `f`, adding its wall time (s) to `acc`.
+fn timed<T>(acc: &mut f64, f: impl FnOnce() -> T) -> T {
+    let clock = std::time::Instant::now();
+    let out = f();
+    *acc += clock.elapsed().as_secs_f64();
+    out
 }
 
 /// Solves the thermal problem from the isothermal solution `start` of the same `problem`.
@@ -432,7 +479,9 @@ pub fn solve_thermal(
             (Termination::ThermalFailed(why), Some(nz)) if contact.nz() < nz => {
                 let why = why.clone();
                 contact.retry_with_points_across_film(nz, why);
-                run(problem, params, thermal, start, contact, observer)
+                let mut second = run(problem, params, thermal, start, contact, observer);
+                second.times.add(&first.times);
+                second
             }
             _ => first,
         }
@@ -447,6 +496,8 @@ fn run(
     contact: &mut ThermalContact,
     observer: &mut (dyn FnMut(usize, f64) + Send),
 ) -> ThermalResult {
+    let clock = std::time::Instant::now();
+    let mut times = ThermalTimes::default();
     let grid = problem.grid;
     let (b, r, ph) = (
         problem.hertz_half_width,
@@ -568,12 +619,20 @@ fn run(
         contact.options.surface_tol = first_surface_stop(&residuals, rough.surface_tol);
         contact.options.line.nearest_root = std::mem::take(&mut check_polish);
         solved_before.copy_from_slice(contact.film_cells());
-        change = match contact.update(
-            &p_si,
-            &h_si,
-            &sys.active,
-            Some((&factors.flow, &factors.couette)),
-        ) {
+        let bodies_before = contact.body_time_s();
+        let mut update_s = 0.0;
+        let updated = timed(&mut update_s, || {
+            contact.update(
+                &p_si,
+                &h_si,
+                &sys.active,
+                Some((&factors.flow, &factors.couette)),
+            )
+        });
+        let bodies_s = contact.body_time_s() - bodies_before;
+        times.body_temperature_s += bodies_s;
+        times.film_energy_s += update_s - bodies_s;
+        change = match updated {
             Ok(c) => c,
             Err(e) => {
                 failure = Some(Termination::ThermalFailed(e.to_string()));
@@ -618,7 +677,9 @@ fn run(
         prev = change;
         film_change = self::film_change(&h_si, &h_prev);
         h_prev.copy_from_slice(&h_si);
-        contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette);
+        timed(&mut times.reynolds_factors_s, || {
+            contact.reynolds_factors(&p_si, &sys.active, &mut fresh.flow, &mut fresh.couette)
+        });
         residual = factor_residual(grid, &h_si, &factors, &fresh);
         residuals.push(residual);
         polishing.seen(residual, thermal.factor_tolerance);
@@ -655,9 +716,11 @@ fn run(
             )
         {
             let saved = (st.clone(), sys.thermal.clone());
-            match polish_coupled(
-                &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
-            ) {
+            match timed(&mut times.coupled_newton_s, || {
+                polish_coupled(
+                    &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
+                )
+            }) {
                 Ok(pol) => adopt_polish!(pol),
                 Err(_) => {
                     polishing.failed(outer, grid.ny > 1);
@@ -743,7 +806,9 @@ fn run(
         );
         tight = tol <= params.tolerance;
         let first_eta = if outer == 1 { ETA_MAX } else { ETA_WARM };
-        let mut e = solve_from_with(&mut sys, &mut st, tol, first_eta, params, &mut stats);
+        let mut e = timed(&mut times.reynolds_s, || {
+            solve_from_with(&mut sys, &mut st, tol, first_eta, params, &mut stats)
+        });
         // a Newton solve that fails with the new factors is tried again from the last pressure
         // with a shorter plain step of the factors: the first step, which takes them whole,
         // stalled Newton in pure rolling at L >= 3 (the Table 3.7 line, Barus oil, U = 2.2e-10)
@@ -757,7 +822,9 @@ fn run(
             st = st_base.clone();
             sys.thermal = Some(factors.clone());
             sys.eval(&mut st);
-            e = solve_from_with(&mut sys, &mut st, tol, ETA_MAX, params, &mut stats);
+            e = timed(&mut times.reynolds_s, || {
+                solve_from_with(&mut sys, &mut st, tol, ETA_MAX, params, &mut stats)
+            });
             if e.converged {
                 // the iterations after it keep to the step that worked (undamped steps
                 // only after two new estimates of a weak coupling)
@@ -782,9 +849,11 @@ fn run(
                 st = st_base.clone();
                 sys.thermal = Some(base.clone());
                 sys.eval(&mut st);
-                if let Ok(pol) = polish_coupled(
-                    &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
-                ) {
+                if let Ok(pol) = timed(&mut times.coupled_newton_s, || {
+                    polish_coupled(
+                        &mut sys, &mut st, contact, ph, hs, params, thermal, &mut stats,
+                    )
+                }) {
                     adopt_polish!(pol);
                 }
                 st = failed.0;
@@ -822,12 +891,14 @@ fn run(
         &mut ehl.fields.viscosity,
         &mut ehl.fields.density,
     );
+    times.total_s = clock.elapsed().as_secs_f64();
     ThermalResult {
         ehl,
         outer_iterations: outer,
         last_change_k: change,
         newton_steps,
         coupled_newton_steps: coupled_steps,
+        times,
     }
 }
 

@@ -1026,12 +1026,14 @@ fn solve_ehl(
     // join, its criterion solves ran 7-11 % slower, `thermal_roller/isothermal_128x64` and
     // `thermal_line/isothermal_512`; a thermal run's did not, `thermal_line/thermal_256` 6.7 %
     // faster with the join than without it, `thermal_roller/thermal_128x64` the same)
+    let start_clock = Instant::now();
     let (mut r, contact) = if case.thermal.is_some() {
         let (r, contact) = rayon::join(start, || thermal::contact_for(case, grid));
         (r, Some(contact))
     } else {
         (start(), None)
     };
+    let start_s = start_clock.elapsed().as_secs_f64();
     // [thermal]: the temperature fixed point from the isothermal solution
     let mut thermal_run = None;
     if let (Some(contact), true) = (contact, r.converged) {
@@ -1082,6 +1084,7 @@ fn solve_ehl(
             summary.friction_force_n = Some(run.friction_force);
             summary.friction_coefficient = Some(mu);
         }
+        summary.thermal_time_s = Some(thermal::time_split(start_s, &run.result.times));
         if run.contact.solved() {
             thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
             if !r.converged {

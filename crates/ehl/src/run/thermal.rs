@@ -4,10 +4,12 @@
 //! [`crate::thermal`], the fixed point in [`crate::ehl::thermal`].
 
 use crate::case::Case;
-use crate::ehl::thermal::{solve_thermal, ThermalParams, ThermalResult, CONVERGED_THERMAL_LOADING};
+use crate::ehl::thermal::{
+    solve_thermal, ThermalParams, ThermalResult, ThermalTimes, CONVERGED_THERMAL_LOADING,
+};
 use crate::ehl::{EhlParams, EhlProblem, EhlResult};
 use crate::lubricant::temperature::ThermalLaws;
-use crate::solution::{Summary, TemperatureFields};
+use crate::solution::{Summary, TemperatureFields, ThermalTimeSplit};
 use crate::thermal::ThermalContact;
 use crate::{Error, Result};
 
@@ -155,6 +157,25 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
         summary
             .warnings
             .extend(energy_balance_warning(err, "of the solution"));
+    }
+}
+
+/// The summary's `thermal_time_s` of a steady thermal run: `start_s` the isothermal start's
+/// wall time (s), `t` the fixed point's phases.
+pub fn time_split(start_s: f64, t: &ThermalTimes) -> ThermalTimeSplit {
+    let phases = t.film_energy_s
+        + t.body_temperature_s
+        + t.reynolds_factors_s
+        + t.reynolds_s
+        + t.coupled_newton_s;
+    ThermalTimeSplit {
+        isothermal_start: start_s,
+        film_energy: t.film_energy_s,
+        body_temperature: t.body_temperature_s,
+        reynolds_factors: t.reynolds_factors_s,
+        reynolds: t.reynolds_s,
+        coupled_newton: t.coupled_newton_s,
+        other: (t.total_s - phases).max(0.0),
     }
 }
 

@@ -343,6 +343,9 @@ pub struct ThermalContact {
     /// why the solve was started again with more points across the film, if it was
     /// ([`ThermalContact::retry_with_points_across_film`])
     retry_reason: Option<String>,
+    /// wall time (s) the updates spent on the bodies' surface temperatures, all updates
+    /// together ([`ThermalContact::body_time_s`])
+    body_time_s: f64,
 }
 
 /// The side flow of one grid line (see `film_energy::SideFlow`), owned.
@@ -419,6 +422,7 @@ impl ThermalContact {
             step: None,
             residual: [f64::INFINITY; 2],
             retry_reason: None,
+            body_time_s: 0.0,
             laws,
         })
     }
@@ -450,6 +454,13 @@ impl ThermalContact {
     pub fn retry_with_points_across_film(&mut self, nz: usize, why: String) {
         self.set_points_across_film(nz);
         self.retry_reason = Some(why);
+    }
+
+    /// Wall time (s) all updates so far spent on the bodies' surface temperatures (the
+    /// moving-heat-source responses matched to the film); the rest of an update is the film's
+    /// energy equation.
+    pub fn body_time_s(&self) -> f64 {
+        self.body_time_s
     }
 
     /// Why the solve was started again with more points across the film (None: it was not).
@@ -764,7 +775,9 @@ impl ThermalContact {
                 .fold((t0, t0), |(lo, hi), &v| (lo.min(v), hi.max(v)));
             let beta = self.laws.viscosity_temperature_coefficient(0.0, t0);
             let range = (range.0, range.1 + surface_overshoot(beta));
+            let clock = std::time::Instant::now();
             let change = self.update_surfaces(&q, &response, &softening, range, &mut rise);
+            self.body_time_s += clock.elapsed().as_secs_f64();
             for (j, s) in sols.iter().enumerate() {
                 if let Some(s) = s {
                     let at = start[j] * nz;
