@@ -172,9 +172,9 @@ pub struct Summary {
     /// own)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal_newton_steps: Option<usize>,
-    /// `[thermal]`, steady runs: where the run's wall time went (s), phase by phase
+    /// `[thermal]`: where the run's wall time went (s), phase by phase
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub thermal_time_s: Option<ThermalTimeSplit>,
+    pub thermal_time: Option<ThermalTimeSplit>,
     /// `[thermal]`, transient runs: the largest film temperature over the travel (K) and the
     /// x_p (m) of its step
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -212,27 +212,33 @@ impl Summary {
     }
 }
 
-/// Where a steady thermal run's wall time went (`summary.json`: `thermal_time_s`, seconds).
-/// The phases of the thermal fixed point are those of
-/// [`crate::ehl::thermal::ThermalTimes`]; its outer iterations start from the isothermal
-/// solution, solved first.
+/// Where a thermal run's wall time went (`summary.json`: `thermal_time`, seconds). The phases
+/// of the thermal fixed point are those of [`crate::ehl::thermal::ThermalTimes`], summed over a
+/// transient run's steady start and time steps (and over both runs of a solve started again
+/// with more points across the film). The dry contact solve before the isothermal start, the
+/// summary figures after the fixed point and a transient run's output are in `wall_time_s`
+/// only.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct ThermalTimeSplit {
-    /// the dry start and the isothermal EHL solve the fixed point starts from (to
+    /// the isothermal EHL solve from the dry contact's pressure (to
     /// `thermal::START_TOLERANCE`), with the bodies' moving-heat-source tables built beside it
-    pub isothermal_start: f64,
+    /// (a steady run), or the transient run's steady isothermal start
+    pub isothermal_start_s: f64,
     /// the film's energy equation across z (the grid lines' temperature solves)
-    pub film_energy: f64,
+    pub film_energy_s: f64,
     /// the bodies' surface temperatures (moving heat source matched to the film)
-    pub body_temperature: f64,
+    pub body_temperature_s: f64,
     /// the generalized Reynolds factors from the temperatures
-    pub reynolds_factors: f64,
-    /// the Newton solves of the Reynolds equation with the factors
-    pub reynolds: f64,
+    pub reynolds_factors_s: f64,
+    /// the Newton solves of the Reynolds equation with the factors (a transient run: every
+    /// Newton solve of its thermal steps)
+    pub reynolds_s: f64,
     /// Newton's method on the coupled problem (`thermal.coupled_newton`)
-    pub coupled_newton: f64,
-    /// the rest of the fixed point (mixing, residuals, the final fields)
-    pub other: f64,
+    pub coupled_newton_s: f64,
+    /// the rest of the fixed point (a transient run: of its steps): setting up the Reynolds
+    /// system and its elastic operator, evaluating it between solves, the mixing, the residuals
+    /// and the final fields. Never negative: the phases are disjoint spans of the whole
+    pub other_s: f64,
 }
 
 /// The stress figures of one body (`summary.json`: `stress`).

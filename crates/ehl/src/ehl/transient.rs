@@ -44,7 +44,8 @@
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{
-    fields_si, polish_coupled, relax_factors, solve_thermal, ThermalParams, START_TOLERANCE,
+    fields_si, polish_coupled, relax_factors, solve_thermal, timed, ThermalParams, ThermalTimes,
+    START_TOLERANCE,
 };
 use super::{
     better, line_band, solve_from, solve_from_with, solve_steady_with_fallback_observed, EhlParams,
@@ -280,10 +281,16 @@ pub struct StepThermal {
     pub heat: HeatBalance,
     /// x-force of the film on body 2 from the thermal velocity profile (N; per metre on a line)
     pub friction_force: f64,
+    /// where this step's wall time went (step 0: the steady fixed point's phases); `total_s`
+    /// the step's whole wall time
+    pub times: ThermalTimes,
+    /// step 0: the wall time (s) of the isothermal steady solve the thermal start began from
+    /// (0 for the time steps)
+    pub isothermal_start_s: f64,
 }
 
 impl StepThermal {
-    fn of(contact: &ThermalContact, passes: usize, change_k: f64) -> StepThermal {
+    fn of(contact: &ThermalContact, passes: usize, change_k: f64, times: ThermalTimes) -> Self {
         let (film, surface) = contact.extremes();
         StepThermal {
             passes,
@@ -292,6 +299,8 @@ impl StepThermal {
             max_surface_temperature_k: surface,
             heat: contact.heat(),
             friction_force: contact.friction_force(),
+            times,
+            isothermal_start_s: 0.0,
         }
     }
 }
@@ -429,6 +438,7 @@ fn run(
     };
     let mut steady =
         solve_steady_with_fallback_observed(&steady_problem, &start_params, &|| {}, newton_told);
+    let isothermal_start_s = clock.elapsed().as_secs_f64();
     // a thermal run starts from the steady thermal solution
     let mut start_thermal = None;
     if let Some((tp, contact)) = thermal.as_mut() {
@@ -441,11 +451,10 @@ fn run(
                 contact,
                 thermal_told,
             );
-            start_thermal = Some(StepThermal::of(
-                contact,
-                r.outer_iterations,
-                r.last_change_k,
-            ));
+            start_thermal = Some(StepThermal {
+                isothermal_start_s,
+                ..StepThermal::of(contact, r.outer_iterations, r.last_change_k, r.times)
+            });
             steady = r.ehl;
         }
     }
@@ -579,14 +588,18 @@ fn run(
             params.newton.tolerance
         };
         let first_eta = step_first_eta(&sys, &st, first_tol);
-        let mut end = solve_from_with(
-            &mut sys,
-            &mut st,
-            first_tol,
-            first_eta,
-            &params.newton,
-            &mut stats,
-        );
+        // where a thermal step's time goes (its Newton solves, temperature updates, factors)
+        let mut times = ThermalTimes::default();
+        let mut end = timed(&mut times.reynolds_s, || {
+            solve_from_with(
+                &mut sys,
+                &mut st,
+                first_tol,
+                first_eta,
+                &params.newton,
+                &mut stats,
+            )
+        });
         if !end.converged && past.len() > 1 {
             // the prediction may have led Newton astray: again from the last solution
             let mut again = State::new(n);
@@ -594,7 +607,9 @@ fn run(
             again.p.copy_from_slice(&last.0);
             again.h0 = last.1;
             sys.eval(&mut again);
-            let e = solve_from(&mut sys, &mut again, first_tol, &params.newton, &mut stats);
+            let e = timed(&mut times.reynolds_s, || {
+                solve_from(&mut sys, &mut again, first_tol, &params.newton, &mut stats)
+            });
             // (a NaN residual loses to any other)
             if e.converged || better(e.residual, end.residual) {
                 st = again;
@@ -637,12 +652,19 @@ fn run(
                 contact.options.line.tol = own.line.tol.max(fraction * tp.tolerance_k);
                 contact.options.surface_tol = own.surface_tol.max(fraction * tp.tolerance_k);
                 contact.options.line.nearest_root = std::mem::take(&mut check_polish);
-                let updated = contact.update(
-                    &p_si,
-                    &h_si,
-                    &sys.active,
-                    Some((&factors.flow, &factors.couette)),
-                );
+                let bodies_before = contact.body_time_s();
+                let mut update_s = 0.0;
+                let updated = timed(&mut update_s, || {
+                    contact.update(
+                        &p_si,
+                        &h_si,
+                        &sys.active,
+                        Some((&factors.flow, &factors.couette)),
+                    )
+                });
+                let bodies_s = contact.body_time_s() - bodies_before;
+                times.body_temperature_s += bodies_s;
+                times.film_energy_s += update_s - bodies_s;
                 contact.options = own;
                 match updated {
                     Ok(c) => change = c,
@@ -662,16 +684,18 @@ fn run(
                 if passes >= max_passes && tp.coupled_newton && !polished && !step_polish_off {
                     polished = true;
                     let saved = (st.clone(), sys.thermal.clone());
-                    let rp = polish_coupled(
-                        &mut sys,
-                        &mut st,
-                        contact,
-                        ph,
-                        hs,
-                        &params.newton,
-                        tp,
-                        &mut stats,
-                    );
+                    let rp = timed(&mut times.coupled_newton_s, || {
+                        polish_coupled(
+                            &mut sys,
+                            &mut st,
+                            contact,
+                            ph,
+                            hs,
+                            &params.newton,
+                            tp,
+                            &mut stats,
+                        )
+                    });
                     match rp {
                         Ok(pol) => {
                             // the next passes check it, as the steady fixed point does
@@ -706,18 +730,22 @@ fn run(
                     prev = change;
                 }
                 let wk = if passes == 1 { 1.0 } else { w };
-                relax_factors(contact, &p_si, &sys.active, &mut factors, &mut fresh, wk);
+                timed(&mut times.reynolds_factors_s, || {
+                    relax_factors(contact, &p_si, &sys.active, &mut factors, &mut fresh, wk)
+                });
                 sys.thermal = Some(factors.clone());
                 sys.eval(&mut st);
                 let first_eta = step_first_eta(&sys, &st, params.newton.tolerance);
-                end = solve_from_with(
-                    &mut sys,
-                    &mut st,
-                    params.newton.tolerance,
-                    first_eta,
-                    &params.newton,
-                    &mut stats,
-                );
+                end = timed(&mut times.reynolds_s, || {
+                    solve_from_with(
+                        &mut sys,
+                        &mut st,
+                        params.newton.tolerance,
+                        first_eta,
+                        &params.newton,
+                        &mut stats,
+                    )
+                });
             }
             contact.options.inlet_hysteresis = hysteresis;
             if let Some(f) = failure {
@@ -727,7 +755,8 @@ fn run(
             // a step whose Newton solve failed before any temperature update has no
             // temperatures of its own: none rather than the last step's
             if passes > 0 && contact.solved() {
-                step_thermal = Some(StepThermal::of(contact, passes, change));
+                times.total_s = t0.elapsed().as_secs_f64();
+                step_thermal = Some(StepThermal::of(contact, passes, change, times));
             }
         }
         if !end.converged {

@@ -1084,7 +1084,7 @@ fn solve_ehl(
             summary.friction_force_n = Some(run.friction_force);
             summary.friction_coefficient = Some(mu);
         }
-        summary.thermal_time_s = Some(thermal::time_split(start_s, &run.result.times));
+        summary.thermal_time = Some(thermal::time_split(start_s, &run.result.times));
         if run.contact.solved() {
             thermal::summarise(case, run, summary.friction_coefficient, &mut summary);
             if !r.converged {

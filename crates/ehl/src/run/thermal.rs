@@ -160,22 +160,24 @@ pub fn summarise(case: &Case, run: &ThermalRun, mu: Option<f64>, summary: &mut S
     }
 }
 
-/// The summary's `thermal_time_s` of a steady thermal run: `start_s` the isothermal start's
-/// wall time (s), `t` the fixed point's phases.
-pub fn time_split(start_s: f64, t: &ThermalTimes) -> ThermalTimeSplit {
+/// The summary's `thermal_time` of a thermal run: `start_s` the isothermal start's wall time
+/// (s), `t` the fixed point's phases (a transient run: summed over its steps). `other_s` is
+/// what the phases leave of `t.total_s`, not clamped: a phase counted twice shows as a
+/// negative rest.
+pub(crate) fn time_split(start_s: f64, t: &ThermalTimes) -> ThermalTimeSplit {
     let phases = t.film_energy_s
         + t.body_temperature_s
         + t.reynolds_factors_s
         + t.reynolds_s
         + t.coupled_newton_s;
     ThermalTimeSplit {
-        isothermal_start: start_s,
-        film_energy: t.film_energy_s,
-        body_temperature: t.body_temperature_s,
-        reynolds_factors: t.reynolds_factors_s,
-        reynolds: t.reynolds_s,
-        coupled_newton: t.coupled_newton_s,
-        other: (t.total_s - phases).max(0.0),
+        isothermal_start_s: start_s,
+        film_energy_s: t.film_energy_s,
+        body_temperature_s: t.body_temperature_s,
+        reynolds_factors_s: t.reynolds_factors_s,
+        reynolds_s: t.reynolds_s,
+        coupled_newton_s: t.coupled_newton_s,
+        other_s: t.total_s - phases,
     }
 }
 

@@ -12,6 +12,7 @@
 
 use super::{film_at, Progress};
 use crate::case::{Case, Travel};
+use crate::ehl::thermal::ThermalTimes;
 use crate::ehl::{
     solve_transient_observed, EhlParams, EhlProblem, MovingSurface, StartObserver, StepResult,
     TimeScheme, TransientEnd, TransientParams, TransientProblem,
@@ -247,7 +248,14 @@ pub(super) fn solve(
     let keep_anyway = case.stress.is_some();
     sink.begin(&grid, contact.is_some())?;
     let mut sink_error: Option<Error> = None;
+    // [thermal]: where the steps' time went, the isothermal start's and the phases' sums
+    let mut thermal_times: Option<(f64, ThermalTimes)> = None;
     let mut observer = |s: &StepResult| {
+        if let Some(th) = &s.thermal {
+            let sum = thermal_times.get_or_insert((0.0, ThermalTimes::default()));
+            sum.0 += th.isothermal_start_s;
+            sum.1.add(&th.times);
+        }
         let x_p = kin.x_p(s.time);
         let friction = if let (true, Some(th)) = (s.converged, &s.thermal) {
             // the thermal shear of the film's own velocity profile (as a steady thermal run)
@@ -556,6 +564,7 @@ pub(super) fn solve(
     }
     record.passage = passage;
     // [thermal]: the last step's temperatures and heat, and the extremes over the travel
+    summary.thermal_time = thermal_times.map(|(start, t)| super::thermal::time_split(start, &t));
     let mut temperature = None;
     if let Some(c) = contact.as_ref().filter(|c| c.solved()) {
         let fields = c.fields(&last.fields.film);
