@@ -429,7 +429,8 @@ pub struct ThermalTimes {
     /// fluxes, matched to the film (`ThermalContact::body_time_s`)
     pub body_temperature_s: f64,
     /// the generalized Reynolds factors from the temperatures
-    /// (`ThermalContact::reynolds_factors`)
+    /// (`ThermalContact::reynolds_factors`; a transient step: with their relaxation,
+    /// `relax_factors`)
     pub reynolds_factors_s: f64,
     /// the Newton solves of the Reynolds equation with the factors (the coupling's other
     /// half; the isothermal solve has the same kind of solve)
@@ -437,15 +438,16 @@ pub struct ThermalTimes {
     /// Newton's method on the coupled problem (`ThermalParams::coupled_newton`), everything
     /// in it
     pub coupled_newton_s: f64,
-    /// the fixed point's whole wall time (a transient step's: the step's), these phases and
-    /// the rest: setting up the Reynolds system and its elastic operator, evaluating it
-    /// between solves, the mixing, the residuals and the final fields
+    /// the fixed point's whole wall time (a transient step's: from the step's start to the end
+    /// of its passes), these phases and the rest: setting up the Reynolds system and its
+    /// elastic operator, evaluating it between solves, the mixing, the residuals and the
+    /// final fields
     pub total_s: f64,
 }
 
 impl ThermalTimes {
     /// Adds `o`'s phases and total to these.
-    pub fn add(&mut self, o: &ThermalTimes) {
+    pub(crate) fn add(&mut self, o: &ThermalTimes) {
         self.film_energy_s += o.film_energy_s;
         self.body_temperature_s += o.body_temperature_s;
         self.reynolds_factors_s += o.reynolds_factors_s;
@@ -1513,8 +1515,8 @@ mod tests {
         );
         // a 2D contact: 10 % (the thesis roller's second solve: residual 2.19e-2, start 2.3e-2,
         // capped at 1e-3; a residual of 5e-3 pins the share)
-        let roller = crate::grid::Grid::new(8, 4, -1.0, 1.0, -1.0, 1.0);
-        let row = crate::grid::Grid::new(8, 1, -1.0, 1.0, -0.5, 0.5);
+        let roller = Grid::new(8, 4, -1.0, 1.0, -1.0, 1.0);
+        let row = Grid::new(8, 1, -1.0, 1.0, -0.5, 0.5);
         assert_eq!(loose_share(roller), 0.1);
         assert_eq!(loose_share(row), 0.01);
         let plane = |r: f64| loose_share(roller) * r;

@@ -282,7 +282,7 @@ pub struct StepThermal {
     /// x-force of the film on body 2 from the thermal velocity profile (N; per metre on a line)
     pub friction_force: f64,
     /// where this step's wall time went (step 0: the steady fixed point's phases); `total_s`
-    /// the step's whole wall time
+    /// the step's wall time from its start to the end of its passes
     pub times: ThermalTimes,
     /// step 0: the wall time (s) of the isothermal steady solve the thermal start began from
     /// (0 for the time steps)

@@ -563,8 +563,9 @@ pub(super) fn solve(
         super::stress::summarise_passage(pr, &mut summary);
     }
     record.passage = passage;
-    // [thermal]: the last step's temperatures and heat, and the extremes over the travel
+    // [thermal]: where the time went
     summary.thermal_time = thermal_times.map(|(start, t)| super::thermal::time_split(start, &t));
+    // [thermal]: the last step's temperatures and heat, and the extremes over the travel
     let mut temperature = None;
     if let Some(c) = contact.as_ref().filter(|c| c.solved()) {
         let fields = c.fields(&last.fields.film);
