@@ -457,6 +457,28 @@ impl ThermalTimes {
     }
 }
 
+/// `contact.update` for the pressure `p` (Pa) and film `h` (m) solved with `factors`, its wall
+/// time added to `times`: the bodies' share to `body_temperature_s`, the rest to
+/// `film_energy_s`.
+pub(super) fn timed_update(
+    contact: &mut ThermalContact,
+    p: &[f64],
+    h: &[f64],
+    active: &[bool],
+    factors: &ThermalFactors,
+    times: &mut ThermalTimes,
+) -> crate::Result<f64> {
+    let bodies_before = contact.body_time_s();
+    let mut update_s = 0.0;
+    let updated = timed(&mut update_s, || {
+        contact.update(p, h, active, Some((&factors.flow, &factors.couette)))
+    });
+    let bodies_s = contact.body_time_s() - bodies_before;
+    times.body_temperature_s += bodies_s;
+    times.film_energy_s += update_s - bodies_s;
+    updated
+}
+
 /// Runs `f`, adding its wall time (s) to `acc`.
 pub(crate) fn timed<T>(acc: &mut f64, f: impl FnOnce() -> T) -> T {
     let clock = std::time::Instant::now();
@@ -623,20 +645,7 @@ fn run(
         contact.options.surface_tol = first_surface_stop(&residuals, rough.surface_tol);
         contact.options.line.nearest_root = std::mem::take(&mut check_polish);
         solved_before.copy_from_slice(contact.film_cells());
-        let bodies_before = contact.body_time_s();
-        let mut update_s = 0.0;
-        let updated = timed(&mut update_s, || {
-            contact.update(
-                &p_si,
-                &h_si,
-                &sys.active,
-                Some((&factors.flow, &factors.couette)),
-            )
-        });
-        let bodies_s = contact.body_time_s() - bodies_before;
-        times.body_temperature_s += bodies_s;
-        times.film_energy_s += update_s - bodies_s;
-        change = match updated {
+        change = match timed_update(contact, &p_si, &h_si, &sys.active, &factors, &mut times) {
             Ok(c) => c,
             Err(e) => {
                 failure = Some(Termination::ThermalFailed(e.to_string()));

@@ -44,8 +44,8 @@
 
 use super::system::{Physics, Squeeze, State, System, ThermalFactors};
 use super::thermal::{
-    fields_si, polish_coupled, relax_factors, solve_thermal, timed, ThermalParams, ThermalTimes,
-    START_TOLERANCE,
+    fields_si, polish_coupled, relax_factors, solve_thermal, timed, timed_update, ThermalParams,
+    ThermalTimes, START_TOLERANCE,
 };
 use super::{
     better, line_band, solve_from, solve_from_with, solve_steady_with_fallback_observed, EhlParams,
@@ -652,19 +652,8 @@ fn run(
                 contact.options.line.tol = own.line.tol.max(fraction * tp.tolerance_k);
                 contact.options.surface_tol = own.surface_tol.max(fraction * tp.tolerance_k);
                 contact.options.line.nearest_root = std::mem::take(&mut check_polish);
-                let bodies_before = contact.body_time_s();
-                let mut update_s = 0.0;
-                let updated = timed(&mut update_s, || {
-                    contact.update(
-                        &p_si,
-                        &h_si,
-                        &sys.active,
-                        Some((&factors.flow, &factors.couette)),
-                    )
-                });
-                let bodies_s = contact.body_time_s() - bodies_before;
-                times.body_temperature_s += bodies_s;
-                times.film_energy_s += update_s - bodies_s;
+                let updated =
+                    timed_update(contact, &p_si, &h_si, &sys.active, &factors, &mut times);
                 contact.options = own;
                 match updated {
                     Ok(c) => change = c,
